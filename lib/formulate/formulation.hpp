@@ -1,0 +1,53 @@
+#pragma once
+// What a case becomes: one or more sub-problems (systems with a start box) plus the map
+// from a search box back to the user's output variables (joint angles for mechanisms).
+#include "model/polynomial.hpp"
+
+#include <string>
+#include <vector>
+
+namespace linkbox::formulate {
+
+struct SubProblem {
+  std::string label;    // e.g. "shift 010" for a half-turn-shifted spherical sub-problem
+  model::System system;
+  std::vector<int> split_dims;  // variables that are split and measured (primary variables)
+};
+
+// A declared output evaluated on a box, e.g. a platform rotation matrix (row-major).
+struct MatrixOutput {
+  std::string name;
+  std::vector<std::vector<Interval>> rows;
+};
+
+class Formulation {
+ public:
+  virtual ~Formulation() = default;
+  virtual std::string kind() const = 0;
+  virtual size_t subproblem_count() const = 0;
+  virtual SubProblem subproblem(size_t index) const = 0;
+  // Names of the output variables (joint angles in radians for mechanisms).
+  virtual std::vector<std::string> output_names() const = 0;
+  // Rigorous enclosure of the output variables over a box of sub-problem `index`.
+  virtual Box to_output(size_t index, const Box& box) const = 0;
+  // Declared outputs (e.g. rotation matrices), rigorous over the box.
+  virtual std::vector<MatrixOutput> declared_outputs(size_t, const Box&) const { return {}; }
+  // True when output variables are angles (compared modulo 2*pi).
+  virtual bool outputs_are_angles() const { return false; }
+};
+
+// A polynomial system as typed by a user: one sub-problem, outputs are its variables.
+class PolynomialFormulation final : public Formulation {
+ public:
+  explicit PolynomialFormulation(model::System system) : system_(std::move(system)) {}
+  std::string kind() const override { return "polynomial"; }
+  size_t subproblem_count() const override { return 1; }
+  SubProblem subproblem(size_t) const override;
+  std::vector<std::string> output_names() const override { return system_.names(); }
+  Box to_output(size_t, const Box& box) const override { return box; }
+
+ private:
+  model::System system_;
+};
+
+}  // namespace linkbox::formulate

@@ -1,0 +1,231 @@
+#include "formulate/spherical.hpp"
+
+#include "interval/rigorous.hpp"
+
+#include <stdexcept>
+
+namespace linkbox::formulate {
+
+namespace {
+
+[[noreturn]] void fail(const SphericalCase& c, int line, const std::string& msg) {
+  throw std::invalid_argument(c.file + ":" + std::to_string(line) + ": " + msg);
+}
+
+Quaternion pure(const Vec3& v) { return {Interval(0.0), v[0], v[1], v[2]}; }
+
+// Quaternion-valued multi-affine polynomial over the t variables of one loop:
+// terms[mask] is the quaternion coefficient of prod_{j in mask} t_j.
+using QuatPoly = std::vector<Quaternion>;
+
+void times_constant(QuatPoly& p, const Quaternion& c) {
+  for (auto& q : p) q = qmul(q, c);
+}
+
+// p <- p * (1 + t_j axis), t_j being local variable `bit`.
+void times_joint(QuatPoly& p, size_t bit, const Vec3& axis) {
+  const Quaternion a = pure(axis);
+  for (size_t m = 0; m < p.size(); ++m)
+    if (!(m & bit)) {
+      const Quaternion add = qmul(p[m], a);
+      for (int c = 0; c < 4; ++c) p[m | bit][c] += add[c];
+    }
+}
+
+Quaternion factor_constant(const Factor& f) {
+  return f.kind == Factor::Kind::constant ? f.q : axis_angle(f.axis, f.angle);
+}
+
+// Product of factors as a quaternion over a box of t values (shift: half-turn mask).
+Quaternion evaluate_product(const std::vector<Factor>& factors, size_t shift, const Box& box) {
+  Quaternion q{Interval(1.0), Interval(0.0), Interval(0.0), Interval(0.0)};
+  for (auto& f : factors) {
+    if (f.kind != Factor::Kind::joint) {
+      q = qmul(q, factor_constant(f));
+      continue;
+    }
+    const Vec3 p = normalized(f.axis);
+    if (shift >> f.joint & 1) q = qmul(q, pure(p));
+    const Interval& t = box[f.joint];
+    q = qmul(q, Quaternion{Interval(1.0), t * p[0], t * p[1], t * p[2]});
+  }
+  return q;
+}
+
+bool contains_zero_everywhere(const model::Polynomial& p) {
+  for (auto& [powers, c] : p.terms())
+    if (!zero_in(c)) return false;
+  return true;
+}
+
+}  // namespace
+
+Quaternion qmul(const Quaternion& a, const Quaternion& b) {
+  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+          a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+          a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+}
+
+Vec3 normalized(const Vec3& v) {
+  Interval n2 = square(v[0]) + square(v[1]) + square(v[2]);
+  if (n2.lower() <= 0) throw std::invalid_argument("axis of zero length");
+  Interval n = rigorous::sqrt(n2);
+  return {v[0] / n, v[1] / n, v[2] / n};
+}
+
+Quaternion axis_angle(const Vec3& axis, const Interval& angle) {
+  const Vec3 p = normalized(axis);
+  const Interval half = angle / Interval(2.0);
+  const Interval c = rigorous::cos(half), s = rigorous::sin(half);
+  return {c, s * p[0], s * p[1], s * p[2]};
+}
+
+std::vector<std::vector<Interval>> rotation_matrix(const Quaternion& q) {
+  const Interval &w = q[0], &x = q[1], &y = q[2], &z = q[3];
+  const Interval n = square(w) + square(x) + square(y) + square(z), two(2.0);
+  std::vector<std::vector<Interval>> r = {
+      {square(w) + square(x) - square(y) - square(z), two * (x * y - w * z), two * (x * z + w * y)},
+      {two * (x * y + w * z), square(w) - square(x) + square(y) - square(z), two * (y * z - w * x)},
+      {two * (x * z - w * y), two * (y * z + w * x), square(w) - square(x) - square(y) + square(z)}};
+  for (auto& row : r)
+    for (auto& e : row) {
+      e /= n;
+      intersect(e, Interval(-1.0, 1.0), e);
+    }
+  return r;
+}
+
+SphericalFormulation::SphericalFormulation(SphericalCase c) : case_(std::move(c)) {
+  if (case_.loops.empty()) fail(case_, 0, "no loops: nothing to solve");
+  if (case_.joints.empty()) fail(case_, 0, "no joints: nothing to solve");
+  if (case_.joints.size() > 20) fail(case_, case_.joints[0].line, "more than 20 joints (2^r sub-problems)");
+  std::vector<bool> used(case_.joints.size(), false);
+  auto check_factor = [&](const Factor& f) {
+    if (f.kind == Factor::Kind::constant) {
+      bool zero = true;
+      for (auto& v : f.q) zero = zero && v.lower() == 0 && v.upper() == 0;
+      if (zero) fail(case_, f.line, "constant quaternion is zero");
+      return;
+    }
+    try {
+      normalized(f.axis);
+    } catch (const std::invalid_argument&) {
+      fail(case_, f.line, "axis of zero length");
+    }
+    if (f.kind == Factor::Kind::joint && (f.joint < 0 || f.joint >= static_cast<int>(case_.joints.size())))
+      fail(case_, f.line, "joint index out of range");
+  };
+  for (auto& loop : case_.loops) {
+    std::vector<bool> in_loop(case_.joints.size(), false);
+    for (auto& f : loop.factors) {
+      check_factor(f);
+      if (f.kind != Factor::Kind::joint) continue;
+      if (in_loop[f.joint])
+        fail(case_, f.line, "joint '" + case_.joints[f.joint].name + "' appears twice in loop '" + loop.name +
+                                "' (the loop equations would not be multi-affine)");
+      in_loop[f.joint] = used[f.joint] = true;
+    }
+  }
+  for (size_t j = 0; j < used.size(); ++j)
+    if (!used[j]) fail(case_, case_.joints[j].line, "joint '" + case_.joints[j].name + "' is used in no loop");
+  for (auto& out : case_.outputs) {
+    if (out.name == "box" || out.name == "search_box" || out.name == "subproblem" || out.name.empty())
+      fail(case_, out.line, "output name '" + out.name + "' is reserved or empty");
+    for (auto& f : out.factors) check_factor(f);
+  }
+  for (size_t l = 0; l < case_.loops.size(); ++l) {
+    LoopCache c;
+    for (auto& f : case_.loops[l].factors)
+      if (f.kind == Factor::Kind::joint) c.joints.push_back(f.joint);
+    for (size_t local = 0; local < (size_t{1} << c.joints.size()); ++local) {
+      size_t shift = 0;
+      for (size_t b = 0; b < c.joints.size(); ++b) shift |= (local >> b & 1) << c.joints[b];
+      c.by_local_shift.push_back(expand_loop(l, shift));
+    }
+    cache_.push_back(std::move(c));
+  }
+}
+
+std::array<model::Polynomial, 3> SphericalFormulation::loop_equations(size_t loop, size_t shift) const {
+  const LoopCache& c = cache_.at(loop);
+  size_t local = 0;
+  for (size_t b = 0; b < c.joints.size(); ++b) local |= (shift >> c.joints[b] & 1) << b;
+  return c.by_local_shift[local];
+}
+
+std::array<model::Polynomial, 3> SphericalFormulation::expand_loop(size_t loop, size_t shift) const {
+  const Loop& l = case_.loops.at(loop);
+  std::vector<int> local;  // loop-local bit -> joint index
+  for (auto& f : l.factors)
+    if (f.kind == Factor::Kind::joint) local.push_back(f.joint);
+  const Quaternion one{Interval(1.0), Interval(0.0), Interval(0.0), Interval(0.0)};
+  QuatPoly p(size_t{1} << local.size(), Quaternion{Interval(0.0), Interval(0.0), Interval(0.0), Interval(0.0)});
+  p[0] = one;
+  size_t bit = 1;
+  for (auto& f : l.factors) {
+    if (f.kind != Factor::Kind::joint) {
+      times_constant(p, factor_constant(f));
+      continue;
+    }
+    const Vec3 axis = normalized(f.axis);
+    // Half-turn shift (Section 3): rotating by phi + pi about p is p * q(phi).
+    if (shift >> f.joint & 1) times_constant(p, pure(axis));
+    times_joint(p, bit, axis);
+    bit <<= 1;
+  }
+  std::array<model::Polynomial, 3> eqs;
+  for (size_t m = 0; m < p.size(); ++m) {
+    model::Polynomial mono = model::Polynomial::constant(Interval(1.0));
+    for (size_t j = 0; j < local.size(); ++j)
+      if (m >> j & 1) mono = mono * model::Polynomial::variable(local[j]);
+    for (int c = 0; c < 3; ++c) eqs[c] += mono * p[m][c + 1];
+  }
+  return eqs;
+}
+
+SubProblem SphericalFormulation::subproblem(size_t index) const {
+  SubProblem s;
+  s.label = "shift ";
+  for (size_t j = 0; j < case_.joints.size(); ++j) s.label += (index >> j & 1) ? '1' : '0';
+  for (size_t j = 0; j < case_.joints.size(); ++j) {
+    s.system.variables.push_back({"t_" + case_.joints[j].name, Interval(-1.0, 1.0)});
+    s.split_dims.push_back(static_cast<int>(j));
+  }
+  static const char* comp[] = {"i", "j", "k"};
+  for (size_t l = 0; l < case_.loops.size(); ++l) {
+    auto eqs = loop_equations(l, index);
+    for (int c = 0; c < 3; ++c) {
+      // A component that vanishes identically (up to rounding) constrains nothing.
+      if (contains_zero_everywhere(eqs[c])) continue;
+      s.system.equations.push_back(std::move(eqs[c]));
+      s.system.equation_names.push_back(case_.loops[l].name + "." + comp[c]);
+    }
+  }
+  return s;
+}
+
+std::vector<std::string> SphericalFormulation::output_names() const {
+  std::vector<std::string> n;
+  for (auto& j : case_.joints) n.push_back(j.name);
+  return n;
+}
+
+Box SphericalFormulation::to_output(size_t index, const Box& box) const {
+  Box out(box.size());
+  const Interval two_pi = rigorous::pi() * Interval(2.0);
+  for (size_t j = 0; j < box.size(); ++j) {
+    out[j] = rigorous::angle_from_half_tangent(box[j], static_cast<int>(index >> j & 1));
+    // Report shifted angles in (-pi, pi] when the whole interval lies above pi.
+    if (out[j].lower() > rigorous::pi().upper()) out[j] -= two_pi;
+  }
+  return out;
+}
+
+std::vector<MatrixOutput> SphericalFormulation::declared_outputs(size_t index, const Box& box) const {
+  std::vector<MatrixOutput> r;
+  for (auto& o : case_.outputs) r.push_back({o.name, rotation_matrix(evaluate_product(o.factors, index, box))});
+  return r;
+}
+
+}  // namespace linkbox::formulate

@@ -1,0 +1,38 @@
+#pragma once
+// The linear / parabolic / hyperbolic ("L/P/H") form of the iterated-LP paper (Section II):
+// linear equations in all variables, q = x^2 and b = x*y. Primary variables are split and
+// bounded by LPs; dummy variables (q, b) only carry the relaxation.
+#include "model/polynomial.hpp"
+
+#include <vector>
+
+namespace linkbox::model {
+
+struct LinearEquation {
+  std::vector<std::pair<int, Interval>> terms;  // sum coef * v[index] ...
+  Interval rhs;                                 // ... = rhs (interval: rigorous constants)
+};
+
+struct Parabolic {
+  int q, x;  // q = x^2
+};
+
+struct Hyperbolic {
+  int b, x, y;  // b = x * y, x != y
+};
+
+struct LphSystem {
+  std::vector<Variable> variables;  // primary and dummy, with their domains
+  std::vector<int> primary;         // indices of primary variables
+  std::vector<LinearEquation> linear;
+  std::vector<Parabolic> parabolic;
+  std::vector<Hyperbolic> hyperbolic;
+
+  Box domain() const {
+    Box b;
+    for (auto& v : variables) b.push_back(v.domain);
+    return b;
+  }
+};
+
+}  // namespace linkbox::model

@@ -1,0 +1,193 @@
+#include "model/polynomial.hpp"
+
+#include <sstream>
+
+namespace linkbox::model {
+
+namespace {
+Powers multiply(const Powers& a, const Powers& b) {
+  Powers r;
+  size_t i = 0, j = 0;
+  while (i < a.size() || j < b.size()) {
+    if (j == b.size() || (i < a.size() && a[i].first < b[j].first)) r.push_back(a[i++]);
+    else if (i == a.size() || b[j].first < a[i].first) r.push_back(b[j++]);
+    else r.emplace_back(a[i].first, a[i].second + b[j].second), ++i, ++j;
+  }
+  return r;
+}
+bool is_exact_zero(const Interval& c) { return c.lower() == 0 && c.upper() == 0; }
+}  // namespace
+
+Polynomial Polynomial::constant(const Interval& c) {
+  Polynomial p;
+  p.add_term({}, c);
+  return p;
+}
+
+Polynomial Polynomial::variable(int index) {
+  Polynomial p;
+  p.add_term({{index, 1}}, Interval(1.0));
+  return p;
+}
+
+bool Polynomial::is_constant() const {
+  return terms_.empty() || (terms_.size() == 1 && terms_.begin()->first.empty());
+}
+
+Interval Polynomial::constant_term() const {
+  auto it = terms_.find(Powers{});
+  return it == terms_.end() ? Interval(0.0) : it->second;
+}
+
+void Polynomial::add_term(const Powers& p, const Interval& c) {
+  if (is_exact_zero(c)) return;
+  auto [it, inserted] = terms_.emplace(p, c);
+  if (!inserted) {
+    it->second += c;
+    if (is_exact_zero(it->second)) terms_.erase(it);
+  }
+}
+
+Polynomial& Polynomial::operator+=(const Polynomial& o) {
+  for (auto& [p, c] : o.terms_) add_term(p, c);
+  return *this;
+}
+
+Polynomial& Polynomial::operator-=(const Polynomial& o) {
+  for (auto& [p, c] : o.terms_) add_term(p, -c);
+  return *this;
+}
+
+Polynomial& Polynomial::operator*=(const Interval& c) {
+  if (is_exact_zero(c)) {
+    terms_.clear();
+    return *this;
+  }
+  for (auto& [p, v] : terms_) v *= c;
+  return *this;
+}
+
+Polynomial operator*(const Polynomial& a, const Polynomial& b) {
+  Polynomial r;
+  for (auto& [pa, ca] : a.terms_)
+    for (auto& [pb, cb] : b.terms_) r.add_term(multiply(pa, pb), ca * cb);
+  return r;
+}
+
+Polynomial Polynomial::operator-() const {
+  Polynomial r = *this;
+  for (auto& [p, c] : r.terms_) c = -c;
+  return r;
+}
+
+Polynomial Polynomial::pow(int exponent) const {
+  Polynomial r = constant(Interval(1.0)), base = *this;
+  for (; exponent > 0; exponent >>= 1) {
+    if (exponent & 1) r = r * base;
+    if (exponent > 1) base = base * base;
+  }
+  return r;
+}
+
+Interval Polynomial::eval(const Box& box) const {
+  Interval s(0.0);
+  for (auto& [p, c] : terms_) {
+    Interval t = c;
+    for (auto [v, e] : p) t *= (e == 1 ? box[v] : boost::numeric::pow(box[v], e));
+    s += t;
+  }
+  return s;
+}
+
+Polynomial Polynomial::derivative(int index) const {
+  Polynomial r;
+  for (auto& [p, c] : terms_) {
+    for (size_t k = 0; k < p.size(); ++k) {
+      if (p[k].first != index) continue;
+      Powers q = p;
+      int e = q[k].second;
+      if (e == 1) q.erase(q.begin() + k);
+      else q[k].second = e - 1;
+      r.add_term(q, c * Interval(static_cast<double>(e)));
+    }
+  }
+  return r;
+}
+
+std::vector<int> Polynomial::variables() const {
+  std::vector<int> v;
+  for (auto& [p, c] : terms_)
+    for (auto [i, e] : p) v.push_back(i);
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+int Polynomial::degree_in(int index) const {
+  int d = 0;
+  for (auto& [p, c] : terms_)
+    for (auto [i, e] : p)
+      if (i == index) d = std::max(d, e);
+  return d;
+}
+
+int Polynomial::total_degree() const {
+  int d = 0;
+  for (auto& [p, c] : terms_) {
+    int s = 0;
+    for (auto [i, e] : p) s += e;
+    d = std::max(d, s);
+  }
+  return d;
+}
+
+bool Polynomial::is_multi_affine() const {
+  for (auto& [p, c] : terms_)
+    for (auto [i, e] : p)
+      if (e != 1) return false;
+  return true;
+}
+
+std::string Polynomial::to_string(const std::vector<std::string>& names) const {
+  if (terms_.empty()) return "0";
+  std::ostringstream os;
+  os.precision(17);
+  bool first = true;
+  for (auto& [p, c] : terms_) {
+    os << (first ? "" : " + ");
+    first = false;
+    if (singleton(c)) os << c.lower();
+    else os << '[' << c.lower() << ", " << c.upper() << ']';
+    for (auto [i, e] : p) {
+      os << '*' << names.at(i);
+      if (e != 1) os << '^' << e;
+    }
+  }
+  return os.str();
+}
+
+Box System::domain() const {
+  Box b;
+  for (auto& v : variables) b.push_back(v.domain);
+  return b;
+}
+
+bool System::is_multi_affine() const {
+  for (auto& e : equations)
+    if (!e.is_multi_affine()) return false;
+  return true;
+}
+
+int System::index_of(const std::string& name) const {
+  for (size_t i = 0; i < variables.size(); ++i)
+    if (variables[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+std::vector<std::string> System::names() const {
+  std::vector<std::string> n;
+  for (auto& v : variables) n.push_back(v.name);
+  return n;
+}
+
+}  // namespace linkbox::model

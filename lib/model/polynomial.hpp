@@ -1,0 +1,68 @@
+#pragma once
+// Sparse polynomials with interval coefficients, and the systems linkbox solves.
+#include "interval/box.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace linkbox::model {
+
+// Exponents by variable index, sorted by index, no zero exponents.
+using Powers = std::vector<std::pair<int, int>>;
+
+class Polynomial {
+ public:
+  Polynomial() = default;
+  static Polynomial constant(const Interval& c);
+  static Polynomial variable(int index);
+
+  const std::map<Powers, Interval>& terms() const { return terms_; }
+  bool is_zero() const { return terms_.empty(); }
+  bool is_constant() const;
+  Interval constant_term() const;
+
+  Polynomial& operator+=(const Polynomial& o);
+  Polynomial& operator-=(const Polynomial& o);
+  Polynomial& operator*=(const Interval& c);
+  friend Polynomial operator+(Polynomial a, const Polynomial& b) { return a += b; }
+  friend Polynomial operator-(Polynomial a, const Polynomial& b) { return a -= b; }
+  friend Polynomial operator*(const Polynomial& a, const Polynomial& b);
+  friend Polynomial operator*(Polynomial a, const Interval& c) { return a *= c; }
+  Polynomial operator-() const;
+  Polynomial pow(int exponent) const;
+
+  // Natural interval extension (even powers evaluated as such, so x^2 >= 0).
+  Interval eval(const Box& box) const;
+  // Partial derivative with respect to variable `index`.
+  Polynomial derivative(int index) const;
+  // Sorted indices of the variables that occur.
+  std::vector<int> variables() const;
+  int degree_in(int index) const;
+  int total_degree() const;
+  bool is_multi_affine() const;  // every exponent is 1
+  std::string to_string(const std::vector<std::string>& names) const;
+
+ private:
+  void add_term(const Powers& p, const Interval& c);
+  std::map<Powers, Interval> terms_;
+};
+
+struct Variable {
+  std::string name;
+  Interval domain;
+};
+
+// A system of equations p_i = 0 over named variables with domains.
+struct System {
+  std::vector<Variable> variables;
+  std::vector<Polynomial> equations;
+  std::vector<std::string> equation_names;  // same length as equations (may be empty strings)
+
+  Box domain() const;
+  bool is_multi_affine() const;
+  int index_of(const std::string& name) const;  // -1 when absent
+  std::vector<std::string> names() const;
+};
+
+}  // namespace linkbox::model

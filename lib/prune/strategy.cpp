@@ -1,0 +1,33 @@
+#include "prune/strategy.hpp"
+
+#include "prune/trapezoid.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace linkbox::prune {
+
+std::unique_ptr<Sequence> make_strategy(const StrategyOptions& options, const formulate::SubProblem& sub) {
+  std::vector<std::unique_ptr<Contractor>> members;
+  for (auto& name : options.contractors) {
+    if (name == "trapezoid") {
+      if (!sub.system.is_multi_affine())
+        throw std::invalid_argument("--prune trapezoid needs a multi-affine system; this one is not");
+      members.push_back(std::make_unique<Trapezoid>(sub.system.equations));
+    } else {
+      throw std::invalid_argument("unknown pruning strategy '" + name + "'");
+    }
+  }
+  if (members.empty()) throw std::invalid_argument("no pruning strategy given");
+  return std::make_unique<Sequence>(std::move(members), sub.split_dims);
+}
+
+std::vector<std::string> parse_strategy_list(const std::string& text) {
+  std::vector<std::string> r;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) r.push_back(item);
+  return r;
+}
+
+}  // namespace linkbox::prune

@@ -1,0 +1,64 @@
+#pragma once
+// Algorithm 1 of the iterated-LP paper (the same scheme as Section 4 of the spherical one):
+// shrink a box until it is empty, small (a solution box) or no longer shrinks by more than
+// rho, then bisect its widest split dimension.
+#include "prune/contractor.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <span>
+#include <string>
+
+namespace linkbox::solve {
+
+enum class Order { depth_first, breadth_first };
+
+struct Params {
+  double sigma = 1e-4;  // a box whose longest split side is <= sigma is a solution box
+  double rho = 0.99;    // stop shrinking when volume(after)/volume(before) > rho
+  Order order = Order::depth_first;
+  double time_limit = 0;  // seconds; 0 = none
+  long max_boxes = 0;     // processed boxes over the whole run; 0 = none
+};
+
+struct Stats {
+  long processed = 0;  // boxes taken from the list
+  long empty = 0;
+  long solution = 0;
+  long split = 0;
+  long shrinks = 0;    // contractor passes
+  double seconds = 0;
+  Stats& operator+=(const Stats& o);
+};
+
+// Shared by the sub-problems of one run (and its threads): time and box-count limits.
+class Budget {
+ public:
+  explicit Budget(const Params& p);
+  // Takes one box from the budget; false when a limit is reached.
+  bool take_box();
+  bool exhausted() const { return exhausted_.load(std::memory_order_relaxed); }
+  const std::string& reason() const { return reason_; }
+  long boxes_taken() const { return taken_.load(); }
+  double elapsed() const;
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+  double time_limit_;
+  long max_boxes_;
+  std::atomic<long> taken_{0};
+  std::atomic<bool> exhausted_{false};
+  std::string reason_;
+};
+
+struct Result {
+  std::vector<Box> solutions;
+  Stats stats;
+  bool complete = true;  // false when a limit stopped the search: unexplored boxes remain
+  std::vector<Box> pending;  // the unexplored boxes when incomplete
+};
+
+Result branch_and_prune(const Box& start, prune::Contractor& contractor, std::span<const int> split_dims,
+                        const Params& params, Budget& budget);
+
+}  // namespace linkbox::solve
