@@ -1,7 +1,10 @@
 #pragma once
 // What a case becomes: one or more sub-problems (systems with a start box) plus the map
 // from a search box back to the user's output variables (joint angles for mechanisms).
+#include "model/lph.hpp"
 #include "model/polynomial.hpp"
+
+#include <memory>
 
 #include <string>
 #include <vector>
@@ -12,6 +15,9 @@ struct SubProblem {
   std::string label;    // e.g. "shift 010" for a half-turn-shifted spherical sub-problem
   model::System system;
   std::vector<int> split_dims;  // variables that are split and measured (primary variables)
+  // The same system in L/P/H form when the formulation builds one (linkages); the LP
+  // strategy derives it from `system` otherwise. Variable indices agree with `system`.
+  std::shared_ptr<const model::LphSystem> lph;
 };
 
 // A declared output evaluated on a box, e.g. a platform rotation matrix (row-major).
