@@ -41,7 +41,8 @@ Outcome Trapezoid::contract(Box& box) {
     // Butterfly: substitute each variable by its lower (bit clear) and upper (bit set) end.
     for (size_t j = 0; j < k; ++j) {
       const size_t bit = size_t{1} << j;
-      const FastInterval lo(box[eq.vars[j]].lower()), hi(box[eq.vars[j]].upper());
+      // Scalar * interval: cheaper than interval * interval.
+      const double lo = box[eq.vars[j]].lower(), hi = box[eq.vars[j]].upper();
       for (size_t m = 0; m < n; ++m) {
         if (m & bit) continue;
         const FastInterval c0 = corners_[m], c1 = corners_[m | bit];
