@@ -1,5 +1,6 @@
 #include "prune/strategy.hpp"
 
+#include "prune/hc4.hpp"
 #include "prune/trapezoid.hpp"
 
 #include <sstream>
@@ -14,6 +15,8 @@ std::unique_ptr<Sequence> make_strategy(const StrategyOptions& options, const fo
       if (!sub.system.is_multi_affine())
         throw std::invalid_argument("--prune trapezoid needs a multi-affine system; this one is not");
       members.push_back(std::make_unique<Trapezoid>(sub.system.equations));
+    } else if (name == "hc4") {
+      members.push_back(std::make_unique<Hc4>(sub.system.equations));
     } else {
       throw std::invalid_argument("unknown pruning strategy '" + name + "'");
     }

@@ -1,0 +1,81 @@
+#include "prune/hc4.hpp"
+
+namespace linkbox::prune {
+
+namespace {
+
+FastInterval power(const FastInterval& x, int e) { return e == 1 ? x : boost::numeric::pow(x, e); }
+
+// Narrows x to {v in x : v^e in p}, for e = 1 or 2; false when that set is empty.
+bool project_power(Interval& x, const FastInterval& p, int e) {
+  double lo = x.lower(), hi = x.upper();
+  if (e == 1) {
+    lo = std::max(lo, p.lower());
+    hi = std::min(hi, p.upper());
+  } else if (e == 2) {
+    if (p.upper() < 0) return false;
+    const FastInterval r = sqrt(FastInterval(std::max(0.0, p.lower()), p.upper()));
+    // v in [-r.hi, -r.lo] or [r.lo, r.hi]: keep the hull of what meets x.
+    const double in_lo = r.lower(), out = r.upper();
+    double nlo = kInf, nhi = -kInf;
+    if (hi >= -out && lo <= -in_lo) nlo = std::min(nlo, std::max(lo, -out)), nhi = std::max(nhi, std::min(hi, -in_lo));
+    if (hi >= in_lo && lo <= out) nlo = std::min(nlo, std::max(lo, in_lo)), nhi = std::max(nhi, std::min(hi, out));
+    lo = nlo, hi = nhi;
+  } else {
+    return true;
+  }
+  if (!(lo <= hi)) return false;
+  x = Interval(lo, hi);
+  return true;
+}
+
+}  // namespace
+
+Hc4::Hc4(const std::vector<model::Polynomial>& equations) {
+  for (auto& e : equations) {
+    std::vector<Term> terms;
+    for (auto& [p, c] : e.terms()) terms.push_back({c, p});
+    equations_.push_back(std::move(terms));
+  }
+}
+
+Outcome Hc4::contract(Box& box) {
+  RoundingGuard guard;
+  bool shrunk = false;
+  for (auto& terms : equations_) {
+    const size_t n = terms.size();
+    value_.resize(n);
+    prefix_.resize(n + 1);
+    suffix_.resize(n + 1);
+    for (size_t m = 0; m < n; ++m) {
+      FastInterval t = terms[m].coef;
+      for (auto [v, e] : terms[m].powers) t *= power(box[v], e);
+      value_[m] = t;
+    }
+    prefix_[0] = suffix_[n] = FastInterval(0.0);
+    for (size_t m = 0; m < n; ++m) prefix_[m + 1] = prefix_[m] + value_[m];
+    for (size_t m = n; m-- > 0;) suffix_[m] = suffix_[m + 1] + value_[m];
+    if (!zero_in(prefix_[n])) return Outcome::empty;
+    for (size_t m = 0; m < n; ++m) {
+      if (terms[m].powers.empty()) continue;
+      // This term must cancel the others.
+      const FastInterval others = prefix_[m] + suffix_[m + 1];
+      const double lo = std::max(value_[m].lower(), -others.upper()), hi = std::min(value_[m].upper(), -others.lower());
+      if (!(lo <= hi)) return Outcome::empty;
+      const FastInterval target(lo, hi);
+      for (auto [k, ek] : terms[m].powers) {
+        if (ek > 2) continue;
+        FastInterval divisor = terms[m].coef;
+        for (auto [j, ej] : terms[m].powers)
+          if (j != k) divisor *= power(box[j], ej);
+        if (zero_in(divisor)) continue;
+        const Interval before = box[k];
+        if (!project_power(box[k], target / divisor, ek)) return Outcome::empty;
+        shrunk = shrunk || box[k].lower() != before.lower() || box[k].upper() != before.upper();
+      }
+    }
+  }
+  return shrunk ? Outcome::shrunk : Outcome::unchanged;
+}
+
+}  // namespace linkbox::prune

@@ -1,0 +1,26 @@
+#pragma once
+// HC4-revise on sums of monomials (forward evaluation, backward projection onto each
+// variable), the classic constraint-propagation baseline. Projections are made for linear
+// and squared occurrences; higher powers are only evaluated.
+#include "model/polynomial.hpp"
+#include "prune/contractor.hpp"
+
+namespace linkbox::prune {
+
+class Hc4 final : public Contractor {
+ public:
+  explicit Hc4(const std::vector<model::Polynomial>& equations);
+  std::string name() const override { return "hc4"; }
+  Outcome contract(Box& box) override;
+  std::unique_ptr<Contractor> clone() const override { return std::make_unique<Hc4>(*this); }
+
+ private:
+  struct Term {
+    Interval coef;
+    model::Powers powers;
+  };
+  std::vector<std::vector<Term>> equations_;
+  std::vector<FastInterval> value_, prefix_, suffix_;  // scratch
+};
+
+}  // namespace linkbox::prune
