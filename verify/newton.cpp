@@ -387,6 +387,12 @@ bool recheck_curve_crossing(const std::vector<model::Polynomial>& f, const Box& 
   return s && newton_step(method, *s, s->restrict(box), c).interior;
 }
 
+bool recheck_exclusion(const std::vector<model::Polynomial>& f, const Box& box, const Eigen::MatrixXd& c,
+                       Method method) {
+  auto s = square_system(f, all_but(box.size(), -1), box);
+  return s && newton_step(method, *s, box, c).excluded;
+}
+
 bool recheck(const std::vector<model::Polynomial>& f, const Certificate& cert) {
   if (cert.fixed_variable >= 0)
     return recheck_curve_crossing(f, cert.box, cert.fixed_variable, cert.preconditioner, cert.method);

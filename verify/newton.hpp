@@ -81,6 +81,9 @@ bool recheck_hansen_sengupta(const std::vector<model::Polynomial>& f, const Box&
 bool recheck_curve_crossing(const std::vector<model::Polynomial>& f, const Box& box,
                             int parameter, const Eigen::MatrixXd& c,
                             Method method = Method::krawczyk);
+// Re-checks a proof of emptiness: the Newton image of `box` misses it.
+bool recheck_exclusion(const std::vector<model::Polynomial>& f, const Box& box, const Eigen::MatrixXd& c,
+                       Method method = Method::krawczyk);
 // Re-checks a certified result with its own method, box, C and fixed variable.
 bool recheck(const std::vector<model::Polynomial>& f, const Certificate& cert);
 

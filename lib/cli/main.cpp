@@ -2,6 +2,8 @@
 // 1 internal failure, 2 bad input (case file or arguments).
 #include "io/case_file.hpp"
 #include "io/result_json.hpp"
+#include "io/verify_json.hpp"
+#include "verify/certify_case.hpp"
 #include "solve/solve_case.hpp"
 
 #include <CLI/CLI.hpp>
@@ -23,7 +25,31 @@ struct SolveArgs {
   long max_boxes = 0;
   int threads = 1;
   bool quiet = false;
+  bool no_verify = false;
 };
+
+struct CheckArgs {
+  std::string result_file, case_file;
+};
+
+void print_roots(const io::LoadedCase& c, const verify::VerifyReport& v) {
+  const auto names = c.formulation->output_names();
+  std::printf("\nverification (%.3f s): %s\n", v.seconds, v.headline.c_str());
+  int k = 0;
+  for (auto& cl : v.clusters) {
+    if (cl.status != verify::ClusterStatus::certified || cl.duplicate_of >= 0) continue;
+    std::printf("  root %2d:", ++k);
+    for (size_t i = 0; i < cl.root.size(); ++i) std::printf(" %s=%+.12f", names[i].c_str(), median(cl.root[i]));
+    std::printf("  (certified box width %.1e)\n", max_width(cl.root));
+  }
+  for (auto& cl : v.clusters) {
+    if (cl.status == verify::ClusterStatus::curve)
+      std::printf("  curve: %zu boxes, %d/%zu crossings certified\n", cl.boxes.size(), cl.crossings_certified,
+                  cl.crossings.size());
+    else if (cl.status == verify::ClusterStatus::unverified)
+      std::printf("  unverified cluster of %zu boxes: %s\n", cl.boxes.size(), cl.reason.c_str());
+  }
+}
 
 void print_summary(const io::LoadedCase& c, const solve::RunOptions& o, const solve::CaseResult& r) {
   const auto& f = *c.formulation;
@@ -70,11 +96,46 @@ int run_solve(const SolveArgs& a) {
   o.progress = !a.quiet;
   solve::CaseResult r = solve::solve_case(*c.formulation, o);
   print_summary(c, o, r);
+  nlohmann::json j = io::result_json(c.name, c.file, *c.formulation, o, r);
+  if (!a.no_verify) {
+    verify::VerifyOptions vo;
+    vo.sigma = a.sigma;
+    verify::VerifyReport v = verify::verify_case(*c.formulation, r, vo);
+    print_roots(c, v);
+    io::add_verification(j, *c.formulation, v);
+  }
   if (!a.json_out.empty()) {
     std::ofstream out(a.json_out);
     if (!out) throw std::runtime_error("cannot write " + a.json_out);
-    out << io::result_json(c.name, c.file, *c.formulation, o, r).dump(1) << '\n';
+    out << j.dump(1) << '\n';
   }
+  return 0;
+}
+
+int run_check(const CheckArgs& a) {
+  std::ifstream in(a.result_file);
+  if (!in) throw std::invalid_argument("cannot read " + a.result_file);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(a.result_file + ": not a linkbox result: " + e.what());
+  }
+  if (!j.contains("clusters")) throw std::invalid_argument(a.result_file + ": no certificates (was it run with --no-verify?)");
+  io::LoadedCase c = io::load_case(a.case_file.empty() ? j.at("case_file").get<std::string>() : a.case_file);
+  io::CheckOutcome out;
+  try {
+    out = io::check_certificates(j, *c.formulation);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(a.result_file + ": malformed certificate data: " + e.what());
+  }
+  for (auto& f : out.failures) std::fprintf(stderr, "FAILED: %s\n", f.c_str());
+  if (!out.failures.empty()) {
+    std::fprintf(stderr, "%zu of the certificates in %s do not hold\n", out.failures.size(), a.result_file.c_str());
+    return 1;
+  }
+  std::printf("%d certificates re-checked from %s and %s: all hold (%s)\n", out.checked, a.result_file.c_str(),
+              c.file.c_str(), j.value("headline", "").c_str());
   return 0;
 }
 
@@ -97,6 +158,11 @@ int main(int argc, char** argv) {
   solve_cmd->add_option("--threads", sa.threads, "threads across sub-problems")->check(CLI::Range(1, 256));
   solve_cmd->add_option("--json", sa.json_out, "write the result as JSON");
   solve_cmd->add_flag("--quiet", sa.quiet, "no progress on stderr");
+  solve_cmd->add_flag("--no-verify", sa.no_verify, "skip clustering and certification");
+  CheckArgs ca;
+  auto* check_cmd = app.add_subcommand("check", "re-check every certificate of a result JSON (no search)");
+  check_cmd->add_option("result", ca.result_file, "JSON written by solve --json")->required();
+  check_cmd->add_option("--case", ca.case_file, "case file (default: the one named in the JSON)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -105,6 +171,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*solve_cmd) return run_solve(sa);
+    if (*check_cmd) return run_check(ca);
   } catch (const io::CaseError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

@@ -8,4 +8,8 @@ SubProblem PolynomialFormulation::subproblem(size_t) const {
   return s;
 }
 
+NaturalSystem PolynomialFormulation::natural_system(std::uint64_t) const {
+  return {system_.equations, system_.names(), system_.domain()};
+}
+
 }  // namespace linkbox::formulate

@@ -4,6 +4,7 @@
 #include "model/lph.hpp"
 #include "model/polynomial.hpp"
 
+#include <cstdint>
 #include <memory>
 
 #include <string>
@@ -26,6 +27,15 @@ struct MatrixOutput {
   std::vector<std::vector<Interval>> rows;
 };
 
+// The square system in which roots are certified, in the case's natural unknowns (e.g.
+// half-angle tangents of the joints in one chart of half-turn shifts), never in dummy or
+// redundant variables.
+struct NaturalSystem {
+  std::vector<model::Polynomial> equations;
+  std::vector<std::string> unknowns;
+  Box domain;  // where roots count; empty = unbounded (angles: every chart covers the circle)
+};
+
 class Formulation {
  public:
   virtual ~Formulation() = default;
@@ -40,6 +50,16 @@ class Formulation {
   virtual std::vector<MatrixOutput> declared_outputs(size_t, const Box&) const { return {}; }
   // True when output variables are angles (compared modulo 2*pi).
   virtual bool outputs_are_angles() const { return false; }
+
+  // Certification (verify/). A chart is a parametrisation of the natural unknowns, chosen
+  // from a box of output variables so the cluster is well inside it; its number is stored
+  // with each certificate so `linkbox check` can rebuild the same system.
+  virtual std::uint64_t chart_for(const Box& /*output_hull*/) const { return 0; }
+  // Defaults: no natural system (nothing can be certified; verify says so).
+  virtual NaturalSystem natural_system(std::uint64_t) const { return {}; }
+  virtual Box output_to_natural(std::uint64_t, const Box& output) const { return output; }
+  virtual Box natural_to_output(std::uint64_t, const Box& natural) const { return natural; }
+  virtual std::vector<MatrixOutput> natural_outputs(std::uint64_t, const Box&) const { return {}; }
 };
 
 // A polynomial system as typed by a user: one sub-problem, outputs are its variables.
@@ -51,6 +71,9 @@ class PolynomialFormulation final : public Formulation {
   SubProblem subproblem(size_t) const override;
   std::vector<std::string> output_names() const override { return system_.names(); }
   Box to_output(size_t, const Box& box) const override { return box; }
+  NaturalSystem natural_system(std::uint64_t) const override;
+  Box output_to_natural(std::uint64_t, const Box& output) const override { return output; }
+  Box natural_to_output(std::uint64_t, const Box& natural) const override { return natural; }
 
  private:
   model::System system_;

@@ -1,5 +1,6 @@
 #include "formulate/spherical.hpp"
 
+#include "formulate/half_angle.hpp"
 #include "interval/rigorous.hpp"
 
 #include <stdexcept>
@@ -226,6 +227,17 @@ std::vector<MatrixOutput> SphericalFormulation::declared_outputs(size_t index, c
   std::vector<MatrixOutput> r;
   for (auto& o : case_.outputs) r.push_back({o.name, rotation_matrix(evaluate_product(o.factors, index, box))});
   return r;
+}
+
+std::uint64_t SphericalFormulation::chart_for(const Box& output_hull) const { return half_turn_chart(output_hull); }
+
+NaturalSystem SphericalFormulation::natural_system(std::uint64_t chart) const {
+  SubProblem s = subproblem(chart);
+  return {std::move(s.system.equations), s.system.names(), {}};
+}
+
+Box SphericalFormulation::output_to_natural(std::uint64_t chart, const Box& output) const {
+  return angles_to_tangents(chart, output);
 }
 
 }  // namespace linkbox::formulate

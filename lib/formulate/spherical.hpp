@@ -69,6 +69,14 @@ class SphericalFormulation final : public Formulation {
   Box to_output(size_t index, const Box& box) const override;
   std::vector<MatrixOutput> declared_outputs(size_t index, const Box& box) const override;
   bool outputs_are_angles() const override { return true; }
+  // Chart = half-turn shift mask, as for sub-problems: joint j shifted when |phi_j| > pi/2.
+  std::uint64_t chart_for(const Box& output_hull) const override;
+  NaturalSystem natural_system(std::uint64_t chart) const override;
+  Box output_to_natural(std::uint64_t chart, const Box& output) const override;
+  Box natural_to_output(std::uint64_t chart, const Box& natural) const override { return to_output(chart, natural); }
+  std::vector<MatrixOutput> natural_outputs(std::uint64_t chart, const Box& natural) const override {
+    return declared_outputs(chart, natural);
+  }
 
   const SphericalCase& spherical_case() const { return case_; }
   // The 3 vector-part polynomials of one loop for a shift mask, over all joints' t variables.

@@ -1,0 +1,16 @@
+#pragma once
+// Charts of half-angle tangents: t = tan((phi - s*pi)/2) with s in {0, 1} per angle, so
+// that every angle has a chart where |phi - s*pi| <= pi/2 and t stays in [-1, 1].
+#include "interval/box.hpp"
+
+#include <cstdint>
+
+namespace linkbox::formulate {
+
+// Shift mask whose charts put every angle's midpoint within pi/2 (+ slack) of s*pi.
+std::uint64_t half_turn_chart(const Box& angles);
+// Rigorous t-box of angles in the chart; throws std::domain_error if an angle interval is
+// too wide (meets the chart's pole at phi = s*pi + pi).
+Box angles_to_tangents(std::uint64_t chart, const Box& angles);
+
+}  // namespace linkbox::formulate

@@ -1,0 +1,153 @@
+#pragma once
+// Loop linkages of revolute and prismatic joints in the vector model of the iterated-LP
+// paper (Porta, Ros, Thomas, Section II): per joint a unit axis d, per link a unit normal a,
+// and per loop equations (1)-(4)
+//   |a_i| = |d_i| = 1,  sum_i d_i d_i + a_i a_i = 0,  d_i x d_{i+1} = sin(alpha_i) a_i,
+//   d_i . d_{i+1} = cos(alpha_i),
+// in the Denavit-Hartenberg convention  prod_i Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i) = I:
+// d_i = z_{i-1} is the axis of joint i, a_i = x_i the common normal from joint i to joint
+// i+1, theta_i the angle from a_{i-1} to a_i about d_i. A prismatic joint fixes theta_i
+// (a_{i-1} . a_i = cos theta_i, a_{i-1} x a_i = sin theta_i d_i) and lets d_i vary.
+// The equations are simplified (ground, single-variable substitution) and lifted to L/P/H.
+#include "formulate/formulation.hpp"
+
+#include <array>
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace linkbox::formulate {
+
+// Entry i of a loop: joint i (axis d_i), then link i, which runs along the common normal
+// a_i from joint i to joint i+1 (the next entry's joint; the last entry wraps around).
+struct LoopLink {
+  std::string link;
+  std::string joint;
+  bool prismatic = false;
+  Interval a;      // link length along a_i (may be 0: the axes meet)
+  Interval alpha;  // twist: angle from d_i to d_{i+1} about a_i, radians
+  Interval d;      // revolute: offset along d_i from a_{i-1} to a_i; prismatic: its range
+  Interval theta;  // prismatic only: the fixed angle from a_{i-1} to a_i about d_i, radians
+  int line = 0;
+};
+
+struct LinkageLoop {
+  std::string name;
+  std::vector<LoopLink> links;
+  int line = 0;
+};
+
+// d_{joint1} . d_{joint2} = cos(angle): ties axes of different loops (e.g. the third bond of
+// a bridgehead atom in bicyclohexane).
+struct AngleConstraint {
+  std::string name;
+  std::string joint1, joint2;
+  Interval angle;
+  int line = 0;
+};
+
+struct LinkageCase {
+  std::string name;
+  std::string file;    // for messages
+  std::string ground;  // the link whose frame is the world frame
+  int ground_line = 0;
+  std::vector<LinkageLoop> loops;
+  std::vector<AngleConstraint> angle_constraints;
+};
+
+// An invalid linkage; what() is "file:line: message".
+struct LinkageError : std::invalid_argument {
+  int line;
+  std::string message;
+  LinkageError(const std::string& file, int line, const std::string& message);
+};
+
+// Names, topology and parameters (see linkage.cpp); throws LinkageError.
+void validate(const LinkageCase& c);
+
+struct ModelSize {
+  int primary = 0, dummy = 0, linear = 0, parabolic = 0, hyperbolic = 0;
+  bool operator==(const ModelSize&) const = default;
+};
+std::string to_string(const ModelSize& s);  // "23 primary + 44 dummy; 28 L, 21 P, 23 H"
+std::ostream& operator<<(std::ostream& os, const ModelSize& s);
+
+struct LinkageOptions {
+  // A link of length 0 between revolute joints occurs in no loop closure: its normal a_i is
+  // fixed by d_i x d_{i+1} / sin(alpha_i) and its norm follows from (1) and (4), so it is
+  // left out of the model (recovered for the joint angles). True keeps it, as the paper does.
+  bool keep_free_normals = false;
+};
+
+class LinkageFormulation final : public Formulation {
+ public:
+  // Validates (LinkageError) and builds the model. Also throws LinkageError when the ground
+  // alone contradicts an equation (the linkage cannot be assembled).
+  explicit LinkageFormulation(LinkageCase c, LinkageOptions options = {});
+
+  std::string kind() const override { return "linkage"; }
+  size_t subproblem_count() const override { return 1; }
+  SubProblem subproblem(size_t) const override { return sub_; }
+  // One per joint (theta for revolute, the offset d for prismatic joints), measured in the
+  // first loop through the joint; a revolute joint that further loops see between other
+  // normals adds "joint@loop" for each.
+  std::vector<std::string> output_names() const override;
+  // Angles in (-pi, pi]; an enclosure across the cut at pi is reported around pi.
+  Box to_output(size_t index, const Box& box) const override;
+  bool outputs_are_angles() const override { return !has_prismatic_; }
+
+  const LinkageCase& linkage_case() const { return case_; }
+  ModelSize model_size() const;
+
+  // Where the model keeps each coordinate of a vector: a variable of the sub-problem, or a
+  // rigorous constant (ground frame, substituted, or unconstrained: then its domain).
+  struct Coordinate {
+    int variable = -1;  // >= 0: index into the sub-problem's variables
+    Interval value;     // when variable < 0
+  };
+  using VectorModel = std::array<Coordinate, 3>;
+
+  // Joints in order of first appearance.
+  const std::vector<std::string>& joint_names() const { return joint_names_; }
+  const VectorModel& axis(size_t joint) const { return vectors_.at(joint); }
+  // The normal a_i of entry `position` of loop `loop`; nullptr when left out of the model.
+  const VectorModel* normal(size_t loop, size_t position) const;
+  // The offset of a prismatic joint (std::out_of_range for a revolute one).
+  const Coordinate& offset(size_t joint) const;
+
+ private:
+  struct Normal {
+    int joint_in, joint_out;  // indices of the joints it runs between
+    std::string name;         // "a[link]" (or "a[link@loop]" when the link has several)
+    Interval a, alpha;
+    bool ground = false, modelled = true;
+    bool negative_sine = false;  // sin(alpha) < 0: a = -(d_in x d_out) / |...|
+    int line = 0;
+  };
+  struct Output {
+    std::string name;
+    int joint;
+    int normal_in = -1, normal_out = -1;  // revolute: theta from a_in to a_out about d
+  };
+  void index_case();
+  void ground_frame();
+  void build_model();
+  std::array<Interval, 3> vector_value(int vector, const Box& box) const;
+
+  LinkageCase case_;
+  LinkageOptions options_;
+  std::vector<std::string> joint_names_;
+  std::vector<bool> prismatic_;
+  std::vector<std::vector<int>> loop_normals_;  // [loop][position] -> normal index
+  std::vector<Normal> normals_;
+  // Vectors: joint axes (by joint index), then normals (joint count + normal index).
+  std::vector<VectorModel> vectors_;
+  std::vector<bool> constant_;  // vector fixed by the ground frame
+  std::vector<Coordinate> offsets_;  // by joint; prismatic joints only
+  std::vector<Output> outputs_;
+  bool has_prismatic_ = false;
+  SubProblem sub_;
+};
+
+}  // namespace linkbox::formulate

@@ -1,0 +1,182 @@
+#include "io/verify_json.hpp"
+
+#include "io/result_json.hpp"
+
+#include "verify/cluster.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+
+namespace linkbox::io {
+
+using nlohmann::json;
+
+namespace {
+
+json matrix_json(const Eigen::MatrixXd& m) {
+  json j = json::array();
+  for (int r = 0; r < m.rows(); ++r) {
+    json row = json::array();
+    for (int c = 0; c < m.cols(); ++c) row.push_back(m(r, c));
+    j.push_back(row);
+  }
+  return j;
+}
+
+json certificate_json(const verify::Certificate& c) {
+  json j = {{"status", c.status == verify::Status::certified ? "certified" : "unverified"},
+            {"method", c.method == verify::Method::krawczyk ? "krawczyk" : "hansen-sengupta"},
+            {"box", box_json(c.box)},
+            {"image", box_json(c.image)},
+            {"preconditioner", matrix_json(c.preconditioner)},
+            {"unique_in_hull", c.unique_in_hull},
+            {"on_domain_boundary", c.on_domain_boundary},
+            {"root_in_domain", c.root_in_domain}};
+  if (c.status != verify::Status::certified) j["reason"] = verify::to_string(c.reason);
+  if (c.fixed_variable >= 0) j["fixed_variable"] = c.fixed_variable;
+  return j;
+}
+
+Box box_from(const json& j) {
+  Box b;
+  for (auto& x : j) b.push_back(Interval(x.at(0).get<double>(), x.at(1).get<double>()));
+  return b;
+}
+
+verify::Certificate certificate_from(const json& j) {
+  verify::Certificate c;
+  c.method = j.at("method") == "krawczyk" ? verify::Method::krawczyk : verify::Method::hansen_sengupta;
+  c.box = box_from(j.at("box"));
+  const json& m = j.at("preconditioner");
+  c.preconditioner.resize(m.size(), m.empty() ? 0 : m[0].size());
+  for (size_t r = 0; r < m.size(); ++r)
+    for (size_t k = 0; k < m[r].size(); ++k) c.preconditioner(r, k) = m[r][k].get<double>();
+  c.fixed_variable = j.value("fixed_variable", -1);
+  return c;
+}
+
+}  // namespace
+
+void add_verification(json& j, const formulate::Formulation& f, const verify::VerifyReport& r) {
+  j["certified_roots"] = r.certified_roots;
+  j["headline"] = r.headline;
+  j["verification"] = {{"certified_roots", r.certified_roots}, {"unverified", r.unverified}, {"curves", r.curves}, {"empty", r.empty},
+                       {"exact", r.exact}, {"seconds", r.seconds}};
+  json clusters = json::array();
+  for (auto& c : r.clusters) {
+    json cj = {{"status", verify::to_string(c.status)}, {"boxes", c.boxes.size()}, {"hull", box_json(c.hull)},
+               {"chart", c.chart}};
+    if (!c.reason.empty()) cj["reason"] = c.reason;
+    json members = json::array();
+    for (auto [s, k] : c.boxes) members.push_back({s, k});
+    cj["members"] = members;
+    cj["natural_unknowns"] = f.natural_system(c.chart).unknowns;
+    if (c.status == verify::ClusterStatus::certified) {
+      cj["root"] = box_json(c.root);
+      for (auto& m : c.outputs) {
+        json rows = json::array();
+        for (auto& row : m.rows) rows.push_back(box_json(row));
+        cj[m.name] = rows;
+      }
+      if (c.duplicate_of >= 0) cj["duplicate_of"] = c.duplicate_of;
+    }
+    if (c.status != verify::ClusterStatus::curve) cj["certificate"] = certificate_json(c.certificate);
+    if (c.status == verify::ClusterStatus::curve) {
+      json xs = json::array();
+      for (auto& x : c.crossings) {
+        json xj = certificate_json(x.certificate);
+        xj["member"] = x.box;
+        xj["dropped_equation"] = x.dropped_equation;
+        xs.push_back(xj);
+      }
+      cj["crossings"] = xs;
+      cj["crossings_certified"] = c.crossings_certified;
+      cj["crossings_fraction"] = c.crossings.empty() ? 0.0 : double(c.crossings_certified) / c.crossings.size();
+    }
+    clusters.push_back(cj);
+  }
+  j["clusters"] = clusters;
+}
+
+namespace {
+// Whether `hull` covers `b`, angle sides modulo whole turns.
+bool covers(const Box& hull, const Box& b, bool angles) {
+  if (hull.size() != b.size()) return false;
+  for (size_t i = 0; i < b.size(); ++i) {
+    bool in = contains(hull[i], b[i].lower()) && contains(hull[i], b[i].upper());
+    for (int k = -1; angles && !in && k <= 1; k += 2) {
+      const Interval s = b[i] + verify::two_pi() * Interval(k);
+      in = hull[i].lower() <= s.lower() && s.upper() <= hull[i].upper();
+    }
+    if (!in) return false;
+  }
+  return true;
+}
+}  // namespace
+
+CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) {
+  CheckOutcome out;
+  // Solution boxes by (sub-problem, index within it), to check that hulls cover members.
+  std::map<std::pair<size_t, size_t>, Box> solutions;
+  std::map<size_t, size_t> seen;
+  for (auto& s : j.at("solutions")) {
+    const size_t sub = s.at("subproblem");
+    solutions[{sub, seen[sub]++}] = box_from(s.at("box"));
+  }
+  int certified = 0;
+  const auto& clusters = j.at("clusters");
+  for (size_t i = 0; i < clusters.size(); ++i) {
+    const json& c = clusters[i];
+    const std::string where = "cluster " + std::to_string(i);
+    const std::string status = c.at("status");
+    const auto chart = c.at("chart").get<std::uint64_t>();
+    const auto sys = f.natural_system(chart);
+    const Box hull = box_from(c.at("hull"));
+    for (auto& m : c.at("members")) {
+      auto it = solutions.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
+      if (it == solutions.end() || !covers(hull, it->second, f.outputs_are_angles()))
+        out.failures.push_back(where + ": its hull does not cover its member solution boxes");
+    }
+    if (status == "certified") {
+      ++out.checked;
+      verify::Certificate cert = certificate_from(c.at("certificate"));
+      if (!verify::recheck(sys.equations, cert)) {
+        out.failures.push_back(where + ": the Newton test does not hold on the stored box and preconditioner");
+        continue;
+      }
+      // The reported root must enclose what the certified box maps to.
+      if (!contains(box_from(c.at("root")), f.natural_to_output(chart, cert.box)))
+        out.failures.push_back(where + ": the reported root box does not enclose the certified box");
+      if (!sys.domain.empty() && c.at("certificate").value("root_in_domain", false)) {
+        auto image = box_from(c.at("certificate").at("image"));
+        if (!contains(sys.domain, image)) out.failures.push_back(where + ": root claimed in the domain but its image is not");
+      }
+      if (!c.contains("duplicate_of")) ++certified;
+    } else if (status == "empty") {
+      ++out.checked;
+      const json& cj = c.at("certificate");
+      verify::Certificate cert = certificate_from(cj);
+      if (!verify::recheck_exclusion(sys.equations, cert.box, cert.preconditioner, cert.method))
+        out.failures.push_back(where + ": the proof that this cluster holds no root does not hold");
+      else if (!contains(cert.box, f.output_to_natural(chart, box_from(c.at("hull")))))
+        out.failures.push_back(where + ": the box proved empty does not cover the cluster");
+    } else if (status == "curve") {
+      for (auto& x : c.at("crossings")) {
+        if (x.at("status") != "certified") continue;
+        ++out.checked;
+        auto eqs = sys.equations;
+        const int dropped = x.at("dropped_equation");
+        if (dropped >= 0 && dropped < static_cast<int>(eqs.size())) eqs.erase(eqs.begin() + dropped);
+        if (!verify::recheck(eqs, certificate_from(x)))
+          out.failures.push_back(where + ": a curve-crossing certificate does not hold");
+      }
+    }
+  }
+  if (certified != j.at("certified_roots").get<int>())
+    out.failures.push_back("certified_roots says " + std::to_string(j.at("certified_roots").get<int>()) + " but " +
+                           std::to_string(certified) + " distinct certified clusters are listed");
+  return out;
+}
+
+}  // namespace linkbox::io

@@ -1,0 +1,233 @@
+#include "verify/certify_case.hpp"
+
+#include "verify/cluster.hpp"
+#include "verify/square_system.hpp"
+
+#include <Eigen/SVD>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+
+namespace linkbox::verify {
+
+const char* to_string(ClusterStatus s) {
+  switch (s) {
+    case ClusterStatus::certified: return "certified";
+    case ClusterStatus::unverified: return "unverified";
+    case ClusterStatus::curve: return "curve";
+    case ClusterStatus::empty: return "empty";
+  }
+  return "?";
+}
+
+namespace {
+
+// Shifts angle dimensions of `b` by whole turns towards `ref` (an exact set translation,
+// enclosed with a rigorous 2 pi).
+Box unwrap(const Box& b, const Box& ref, bool angles) {
+  if (!angles) return b;
+  Box r = b;
+  for (size_t i = 0; i < b.size(); ++i) {
+    const double turns = std::round((median(ref[i]) - median(b[i])) / (2 * M_PI));
+    if (turns != 0) r[i] += two_pi() * Interval(turns);
+  }
+  return r;
+}
+
+Eigen::VectorXd centre(const Box& b) {
+  Eigen::VectorXd c(b.size());
+  for (size_t i = 0; i < b.size(); ++i) c(i) = median(b[i]);
+  return c;
+}
+
+// Ratio of the smallest to the largest singular value of the float Jacobian at `x`.
+double conditioning(const std::vector<model::Polynomial>& f, const Box& x) {
+  if (f.size() != x.size() || f.empty()) return 0;
+  auto s = SquareSystem::all_unknown(f, x.size());
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.jacobian_at(centre(x)));
+  const auto& sv = svd.singularValues();
+  return sv(0) > 0 ? sv(sv.size() - 1) / sv(0) : 0;
+}
+
+// For a square system that is rank-deficient along a curve, the equation whose removal
+// leaves the best-conditioned rows at x.
+int dependent_equation(const std::vector<model::Polynomial>& f, const Box& x) {
+  auto s = SquareSystem::all_unknown(f, x.size());
+  const Eigen::MatrixXd j = s.jacobian_at(centre(x));
+  int best = -1;
+  double best_sv = -1;
+  for (int r = 0; r < j.rows(); ++r) {
+    Eigen::MatrixXd rest(j.rows() - 1, j.cols());
+    for (int k = 0, o = 0; k < j.rows(); ++k)
+      if (k != r) rest.row(o++) = j.row(k);
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(rest);
+    const double sv = svd.singularValues()(svd.singularValues().size() - 1);
+    if (sv > best_sv) best_sv = sv, best = r;
+  }
+  return best;
+}
+
+void certify_curve(const formulate::Formulation& f, const std::vector<Box>& outputs, ClusterReport& c,
+                   const NewtonOptions& options) {
+  const auto sys = f.natural_system(c.chart);
+  const size_t n = sys.unknowns.size();
+  for (size_t k = 0; k < c.boxes.size(); ++k) {
+    CurveCrossing x;
+    x.box = k;
+    Box natural;
+    try {
+      natural = f.output_to_natural(c.chart, unwrap(outputs[k], c.hull, f.outputs_are_angles()));
+    } catch (const std::exception&) {
+      c.crossings.push_back(x);
+      continue;
+    }
+    std::vector<model::Polynomial> eqs = sys.equations;
+    if (eqs.size() == n) {
+      x.dropped_equation = dependent_equation(eqs, natural);
+      eqs.erase(eqs.begin() + x.dropped_equation);
+    }
+    // Fix the variable that varies most across the box (the curve's direction there).
+    x.certificate = certify_curve_crossing(eqs, natural, widest_dimension(natural), options);
+    c.crossings_certified += x.certificate.status == Status::certified;
+    c.crossings.push_back(std::move(x));
+  }
+}
+
+}  // namespace
+
+VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResult& result,
+                         const VerifyOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  VerifyReport report;
+  const bool angles = f.outputs_are_angles();
+  std::vector<Box> outputs;
+  std::vector<std::pair<size_t, size_t>> where;
+  for (auto& s : result.subproblems)
+    for (size_t k = 0; k < s.solutions.size(); ++k) {
+      outputs.push_back(f.to_output(s.index, s.solutions[k]));
+      where.emplace_back(s.index, k);
+    }
+  const std::vector<bool> periodic(f.output_names().size(), angles);
+  const auto groups = cluster_boxes(outputs, periodic);
+
+  std::vector<Box> roots;        // certified root boxes (output variables), for merging
+  std::vector<size_t> root_of;   // cluster index of each
+  for (auto& g : groups) {
+    ClusterReport c;
+    std::vector<Box> member;
+    for (int i : g) {
+      c.boxes.push_back(where[i]);
+      member.push_back(unwrap(outputs[i], outputs[g[0]], angles));
+    }
+    c.hull = member[0];
+    for (auto& b : member) c.hull = hull(c.hull, b);
+    c.chart = f.chart_for(c.hull);
+    const auto sys = f.natural_system(c.chart);
+    const size_t n = sys.unknowns.size();
+    Box start;
+    try {
+      start = f.output_to_natural(c.chart, c.hull);
+    } catch (const std::exception& e) {
+      c.reason = std::string("cluster too wide for a chart: ") + e.what();
+    }
+    const bool square = n > 0 && sys.equations.size() == n;
+    if (!start.empty() && square) {
+      c.certificate = certify_root(sys.equations, start, sys.domain, options.newton);
+      if (c.certificate.status == Status::certified && !c.certificate.root_in_domain && !sys.domain.empty()) {
+        c.reason = "root on the domain boundary: certified in a slightly enlarged domain only";
+      } else if (c.certificate.status == Status::certified) {
+        c.status = ClusterStatus::certified;
+        c.root = f.natural_to_output(c.chart, c.certificate.box);
+        c.outputs = f.natural_outputs(c.chart, c.certificate.box);
+        if (!c.certificate.unique_in_hull) c.reason = "root certified; its cluster hull not proved free of other roots";
+      } else if (c.certificate.reason == Reason::no_root) {
+        c.status = ClusterStatus::empty;
+        c.reason = "proved to hold no root: the Newton image misses the cluster";
+      } else {
+        c.reason = to_string(c.certificate.reason);
+      }
+    } else if (!start.empty()) {
+      c.reason = n == 0 ? "no natural system to certify in"
+                        : "natural system not square (" + std::to_string(sys.equations.size()) + " equations, " +
+                              std::to_string(n) + " unknowns)";
+    }
+    // Curve: many boxes spanning far more than sigma, with a rank-deficient Jacobian (or a
+    // system with fewer equations than unknowns).
+    const bool long_cluster = c.boxes.size() >= 4 && max_width(c.hull) > 20 * options.sigma;
+    if (c.status == ClusterStatus::unverified && long_cluster && !start.empty() &&
+        (sys.equations.size() + 1 == n || (square && conditioning(sys.equations, start) < 1e-6))) {
+      c.status = ClusterStatus::curve;
+      c.reason = "positive-dimensional: boxes follow a curve";
+      certify_curve(f, member, c, options.newton);
+    }
+    if (c.status == ClusterStatus::certified) {
+      roots.push_back(c.root);
+      root_of.push_back(report.clusters.size());
+    }
+    report.clusters.push_back(std::move(c));
+  }
+
+  // Two clusters whose certified roots overlap are the same root when one certificate
+  // covers both boxes; otherwise both stay, and the run is not exact.
+  std::vector<bool> duplicate(report.clusters.size(), false);
+  int overlaps_unresolved = 0;
+  for (auto& g : cluster_boxes(roots, periodic)) {
+    if (g.size() < 2) continue;
+    ClusterReport& first = report.clusters[root_of[g[0]]];
+    for (size_t k = 1; k < g.size(); ++k) {
+      ClusterReport& other = report.clusters[root_of[g[k]]];
+      const auto sys = f.natural_system(first.chart);
+      Box joint = first.certificate.box;
+      try {
+        joint = hull(joint, f.output_to_natural(first.chart, unwrap(other.root, first.root, angles)));
+      } catch (const std::exception&) {
+      }
+      Certificate both = certify_root(sys.equations, joint, sys.domain, options.newton);
+      if (both.status == Status::certified && both.unique_in_hull) {
+        duplicate[root_of[g[k]]] = true;
+        other.duplicate_of = static_cast<int>(root_of[g[0]]);
+        other.reason = "same root as another cluster (found by two sub-problems)";
+      } else {
+        ++overlaps_unresolved;
+      }
+    }
+  }
+  bool all_unique = true;
+  std::map<std::string, int> reasons;
+  for (size_t i = 0; i < report.clusters.size(); ++i) {
+    auto& c = report.clusters[i];
+    if (c.status == ClusterStatus::certified && !duplicate[i]) {
+      report.certified_roots++;
+      all_unique = all_unique && c.certificate.unique_in_hull;
+      if (!c.certificate.unique_in_hull) reasons[c.reason]++;
+    } else if (c.status == ClusterStatus::curve) {
+      report.curves++;
+    } else if (c.status == ClusterStatus::empty) {
+      report.empty++;
+    } else if (c.status == ClusterStatus::unverified) {
+      report.unverified++;
+      reasons[c.reason]++;
+    }
+  }
+  report.exact = result.complete && report.unverified == 0 && report.curves == 0 && all_unique &&
+                 overlaps_unresolved == 0;
+  const int n = report.certified_roots;
+  if (report.exact) {
+    report.headline = "exactly " + std::to_string(n) + " root" + (n == 1 ? "" : "s") +
+                      " in the domain, each in its certified box";
+  } else {
+    report.headline = std::to_string(n) + " certified";
+    if (report.curves) report.headline += ", " + std::to_string(report.curves) + " curve cluster(s)";
+    if (report.unverified) report.headline += ", " + std::to_string(report.unverified) + " unresolved";
+    if (overlaps_unresolved) report.headline += ", " + std::to_string(overlaps_unresolved) + " overlapping roots unresolved";
+    if (!result.complete) report.headline += "; search incomplete (" + result.stop_reason + ")";
+    std::string why;
+    for (auto& [r, k] : reasons) why += (why.empty() ? "" : "; ") + r + " x" + std::to_string(k);
+    if (!why.empty()) report.headline += " (" + why + ")";
+  }
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return report;
+}
+
+}  // namespace linkbox::verify

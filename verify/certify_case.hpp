@@ -1,0 +1,58 @@
+#pragma once
+// Post-processing of a branch-and-prune run: cluster the solution boxes (in the output
+// variables, angles modulo 2 pi, so a root found by two sub-problems is one cluster), then
+// certify each cluster's root by interval Newton in the case's natural unknowns, recognise
+// curve clusters, and state what was proved.
+#include "formulate/formulation.hpp"
+#include "solve/solve_case.hpp"
+#include "verify/newton.hpp"
+
+#include <string>
+#include <vector>
+
+namespace linkbox::verify {
+
+// empty: proved to hold no root (a spurious cluster of the search).
+enum class ClusterStatus { certified, unverified, curve, empty };
+const char* to_string(ClusterStatus s);
+
+struct CurveCrossing {
+  size_t box = 0;  // index into ClusterReport::boxes
+  Certificate certificate;
+  int dropped_equation = -1;  // square system used: the natural equations but this one
+};
+
+struct ClusterReport {
+  ClusterStatus status = ClusterStatus::unverified;
+  std::string reason;                           // unverified: why; certified: notes
+  std::vector<std::pair<size_t, size_t>> boxes;  // (sub-problem, solution index)
+  Box hull;                                     // output variables (angles unwrapped)
+  std::uint64_t chart = 0;
+  Certificate certificate;                      // in the chart's natural unknowns
+  Box root;                                     // certified box in the output variables
+  std::vector<formulate::MatrixOutput> outputs;  // declared outputs over the certified box
+  std::vector<CurveCrossing> crossings;         // curve clusters
+  int crossings_certified = 0;
+  int duplicate_of = -1;  // certified, but the same root as that cluster's
+};
+
+struct VerifyOptions {
+  NewtonOptions newton;
+  double sigma = 1e-4;  // the search's sigma: curve clusters span far more than this
+};
+
+struct VerifyReport {
+  std::vector<ClusterReport> clusters;
+  int certified_roots = 0;
+  int unverified = 0;
+  int curves = 0;
+  int empty = 0;
+  bool exact = false;  // "exactly N roots in the domain" holds
+  std::string headline;
+  double seconds = 0;
+};
+
+VerifyReport verify_case(const formulate::Formulation& formulation, const solve::CaseResult& result,
+                         const VerifyOptions& options = {});
+
+}  // namespace linkbox::verify
