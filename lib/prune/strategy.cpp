@@ -1,6 +1,9 @@
 #include "prune/strategy.hpp"
 
+#include "formulate/to_lph.hpp"
 #include "prune/hc4.hpp"
+#include "prune/lifted.hpp"
+#include "prune/lp_relaxation.hpp"
 #include "prune/trapezoid.hpp"
 
 #include <sstream>
@@ -15,6 +18,18 @@ std::unique_ptr<Sequence> make_strategy(const StrategyOptions& options, const fo
       if (!sub.system.is_multi_affine())
         throw std::invalid_argument("--prune trapezoid needs a multi-affine system; this one is not");
       members.push_back(std::make_unique<Trapezoid>(sub.system.equations));
+    } else if (name == "lp") {
+      if (options.lp != "safe" && options.lp != "exact")
+        throw std::invalid_argument("--lp must be safe or exact, not '" + options.lp + "'");
+      const auto backend = options.lp == "exact" ? lp::LpBackend::exact : lp::LpBackend::safe;
+      if (sub.lph) {
+        members.push_back(std::make_unique<LpRelaxation>(*sub.lph, backend));
+      } else {
+        // Any polynomial system, lifted to L/P/H form around the search's own variables.
+        model::LphSystem lph = formulate::to_lph(sub.system);
+        auto inner = std::make_unique<LpRelaxation>(lph, backend);
+        members.push_back(std::make_unique<Lifted>(std::move(lph), sub.system.variables.size(), std::move(inner)));
+      }
     } else if (name == "hc4") {
       members.push_back(std::make_unique<Hc4>(sub.system.equations));
     } else {

@@ -1,0 +1,15 @@
+#include "prune/lp/lp_solver.hpp"
+
+#include "prune/lp/exact_lp.hpp"
+#include "prune/lp/safe_lp.hpp"
+
+namespace linkbox::prune::lp {
+
+std::unique_ptr<LpSolver> make_lp_solver(LpBackend backend) {
+  if (backend == LpBackend::exact) return std::make_unique<ExactLp>();
+  return std::make_unique<SafeLp>();
+}
+
+std::string to_string(LpBackend backend) { return backend == LpBackend::exact ? "exact" : "safe"; }
+
+}  // namespace linkbox::prune::lp

@@ -1,0 +1,44 @@
+#pragma once
+// One interface over the LP backends the LP-relaxation contractor can use.
+// Every answer is rigorous for the LP exactly as loaded (double data read as rationals):
+// a minimum is never above the true LP minimum, a maximum never below the true maximum,
+// and `infeasible` is only said when proved. Float solver output alone never decides.
+#include "prune/lp/linear_program.hpp"
+
+#include <memory>
+#include <string>
+
+namespace linkbox::prune::lp {
+
+enum class LpStatus {
+  bounded,     // value is a rigorous bound (possibly weak, e.g. the column's own bound)
+  infeasible,  // proved: no point satisfies the rows within the column bounds
+  unknown,     // nothing proved; value is the trivial bound (the column's own bound)
+};
+
+struct LpBound {
+  LpStatus status = LpStatus::unknown;
+  // min: value <= true minimum; max: value >= true maximum. For `infeasible`, +inf for a
+  // minimum and -inf for a maximum (the optimum of an empty set).
+  double value = 0;
+};
+
+enum class LpBackend { safe, exact };
+
+class LpSolver {
+ public:
+  virtual ~LpSolver() = default;
+  virtual std::string name() const = 0;
+  // Takes a private copy; later calls bound columns of this LP.
+  virtual void load(const LinearProgram& program) = 0;
+  // Tightens (or replaces) the bounds of one column of the loaded LP, e.g. with the result
+  // of an earlier minimize/maximize (Algorithm 2 feeds each new bound to the next LP).
+  virtual void set_column_bounds(int col, double lo, double hi) = 0;
+  virtual LpBound minimize(int col) = 0;
+  virtual LpBound maximize(int col) = 0;
+};
+
+std::unique_ptr<LpSolver> make_lp_solver(LpBackend backend);
+std::string to_string(LpBackend backend);
+
+}  // namespace linkbox::prune::lp

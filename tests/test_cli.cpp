@@ -1,0 +1,104 @@
+// The executable as a user runs it: exit codes, JSON, and `linkbox check` failing loudly on
+// tampered certificates.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <sys/wait.h>
+
+namespace {
+
+int run(const std::string& args) {
+  const std::string cmd = std::string(LINKBOX_CLI) + " " + args + " > /dev/null 2>&1";
+  int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string src(const std::string& p) { return std::string(LINKBOX_SOURCE_DIR) + "/" + p; }
+
+nlohmann::json read(const std::string& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+void write(const std::string& file, const nlohmann::json& j) { std::ofstream(file) << j.dump(); }
+
+}  // namespace
+
+TEST_CASE("solve writes the documented JSON and check accepts it", "[cli]") {
+  const std::string out = "cli-wrist.json";
+  REQUIRE(run("solve " + src("cases/spherical/wrist.toml") + " --quiet --json " + out) == 0);
+  auto j = read(out);
+  for (auto key : {"case", "variables", "parameters", "complete", "stats", "solutions", "clusters", "certified_roots", "headline"})
+    CHECK(j.contains(key));
+  for (auto key : {"subproblems", "processed", "empty", "split", "solution_boxes", "seconds"}) CHECK(j["stats"].contains(key));
+  CHECK(j["stats"]["subproblems"] == 8);
+  CHECK(j["certified_roots"] == 2);
+  CHECK(j["solutions"][0]["rotation"].size() == 3);
+  CHECK(run("check " + out) == 0);
+}
+
+TEST_CASE("check fails on tampered certificates", "[cli]") {
+  const std::string out = "cli-agile.json", bad = "cli-tampered.json";
+  REQUIRE(run("solve " + src("cases/spherical/agile-eye.toml") + " --quiet --json " + out) == 0);
+  const auto j = read(out);
+  REQUIRE(run("check " + out) == 0);
+  size_t first = 0;
+  while (j["clusters"][first]["status"] != "certified") ++first;
+
+  SECTION("a certified box shifted") {
+    auto t = j;
+    for (auto& side : t["clusters"][first]["certificate"]["box"]) {
+      side[0] = side[0].get<double>() + 1e-3;
+      side[1] = side[1].get<double>() + 1e-3;
+    }
+    write(bad, t);
+    CHECK(run("check " + bad) == 1);
+  }
+  SECTION("a reported root moved away from its certificate") {
+    auto t = j;
+    t["clusters"][first]["root"][0][0] = t["clusters"][first]["root"][0][0].get<double>() + 0.5;
+    t["clusters"][first]["root"][0][1] = t["clusters"][first]["root"][0][1].get<double>() + 0.5;
+    write(bad, t);
+    CHECK(run("check " + bad) == 1);
+  }
+  SECTION("the root count changed") {
+    auto t = j;
+    t["certified_roots"] = j["certified_roots"].get<int>() + 1;
+    write(bad, t);
+    CHECK(run("check " + bad) == 1);
+  }
+  SECTION("a preconditioner zeroed") {
+    auto t = j;
+    for (auto& row : t["clusters"][first]["certificate"]["preconditioner"])
+      for (auto& x : row) x = 0.0;
+    write(bad, t);
+    CHECK(run("check " + bad) == 1);
+  }
+  SECTION("a hull that no longer covers its boxes") {
+    auto t = j;
+    auto& side = t["clusters"][first]["hull"][0];
+    side[1] = side[0].get<double>();
+    side[0] = side[0].get<double>() - 1e-3;
+    write(bad, t);
+    CHECK(run("check " + bad) == 1);
+  }
+}
+
+TEST_CASE("bad input exits with code 2", "[cli]") {
+  CHECK(run("solve /nonexistent/case.toml") == 2);
+  CHECK(run("solve " + src("cases/spherical/wrist.toml") + " --sigma -1") == 2);
+  CHECK(run("solve " + src("cases/spherical/wrist.toml") + " --prune nosuch") == 2);
+  CHECK(run("check /nonexistent.json") == 2);
+  CHECK(run("frobnicate") == 2);
+}
+
+TEST_CASE("limits give a partial result marked incomplete", "[cli]") {
+  const std::string out = "cli-limited.json";
+  REQUIRE(run("solve " + src("cases/spherical/four-loop.toml") + " --quiet --max-boxes 200 --json " + out) == 0);
+  auto j = read(out);
+  CHECK(j["complete"] == false);
+  CHECK(j["stop_reason"] == "box limit reached");
+  CHECK(j["headline"].get<std::string>().find("incomplete") != std::string::npos);
+}
