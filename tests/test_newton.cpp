@@ -9,6 +9,7 @@ using linkbox::Box;
 using linkbox::Interval;
 using linkbox::model::Polynomial;
 using namespace linkbox::verify;
+using namespace linkbox::newton;
 
 namespace {
 

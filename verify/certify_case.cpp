@@ -1,7 +1,7 @@
 #include "verify/certify_case.hpp"
 
 #include "verify/cluster.hpp"
-#include "verify/square_system.hpp"
+#include "prune/newton/square_system.hpp"
 
 #include <Eigen/SVD>
 

@@ -4,13 +4,27 @@
 // then tightening. The result keeps what a reviewer needs to re-check it without trusting
 // any float step: the box X and the preconditioner C (see recheck_*).
 #include "model/polynomial.hpp"
-#include "verify/interval_newton.hpp"
+#include "prune/newton/interval_newton.hpp"
 
 #include <Eigen/Core>
 
 #include <vector>
 
 namespace linkbox::verify {
+
+// The interval Newton operators live with the contractors (prune/newton); certification
+// uses them by these names.
+using newton::IMatrix;
+using newton::IVector;
+using newton::Method;
+using newton::NewtonStep;
+using newton::SquareSystem;
+using newton::hansen_sengupta_step;
+using newton::krawczyk_step;
+using newton::newton_step;
+using newton::at_most_one_root;
+using newton::midpoint;
+using newton::point_box;
 
 enum class Status { certified, unverified };
 

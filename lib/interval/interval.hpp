@@ -12,9 +12,26 @@ namespace linkbox {
 namespace bi = boost::numeric::interval_lib;
 
 // rounded_arith_opp is the Boost default for double and the one measured sound at -O2
-// with -frounding-math. checking_base: emptiness is handled explicitly, never by throwing.
-using Interval = boost::numeric::interval<
-    double, bi::policies<bi::save_state<bi::rounded_arith_opp<double>>, bi::checking_base<double>>>;
+// with -frounding-math, except for sqrt: GCC treats sqrt as pure even under
+// -frounding-math and reuses the downward-rounded root as the upper bound (one sqrtsd).
+// Hiding the argument behind an empty asm forces one evaluation per rounding mode.
+struct RoundedArith : bi::rounded_arith_opp<double> {
+  static double opaque(double x) {
+    asm volatile("" : "+x"(x));
+    return x;
+  }
+  double sqrt_down(const double& x) {
+    this->downward();
+    const double r = this->force_rounding(std::sqrt(opaque(x)));
+    this->upward();
+    return r;
+  }
+  double sqrt_up(const double& x) { return this->force_rounding(std::sqrt(opaque(x))); }
+};
+
+// checking_base: emptiness is handled explicitly, never by throwing.
+using Interval =
+    boost::numeric::interval<double, bi::policies<bi::save_state<RoundedArith>, bi::checking_base<double>>>;
 
 // Same arithmetic without per-operation mode switches: only valid while a RoundingGuard lives.
 using FastInterval = bi::unprotect<Interval>::type;

@@ -65,6 +65,12 @@ Interval acos(const Interval& x) {
   return apply(x, mpfi_acos);
 }
 Interval atan(const Interval& x) { return apply(x, mpfi_atan); }
+Interval atan2(const Interval& y, const Interval& x) {
+  Mp a(y), b(x), r;
+  mpfi_atan2(r.v, a.v, b.v);
+  if (mpfi_nan_p(r.v)) throw std::domain_error("atan2: not a number");
+  return r.get();
+}
 Interval sqrt(const Interval& x) {
   if (x.lower() < 0) throw std::domain_error("sqrt: negative argument");
   return apply(x, mpfi_sqrt);

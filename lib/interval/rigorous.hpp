@@ -19,6 +19,9 @@ Interval tan(const Interval& x);   // throws std::domain_error if x meets a pole
 Interval asin(const Interval& x);  // throws std::domain_error outside [-1, 1]
 Interval acos(const Interval& x);
 Interval atan(const Interval& x);
+// Angle of the points (x, y) of a box: encloses {atan2(y, x)} within [-pi, pi]. Across the
+// cut, where atan2 jumps (x < 0 with y of both signs, or y exactly 0), it is all of [-pi, pi].
+Interval atan2(const Interval& y, const Interval& x);
 Interval sqrt(const Interval& x);  // throws std::domain_error for negative x
 Interval exp(const Interval& x);
 Interval log(const Interval& x);   // throws std::domain_error for x <= 0

@@ -4,6 +4,7 @@
 #include "prune/hc4.hpp"
 #include "prune/lifted.hpp"
 #include "prune/lp_relaxation.hpp"
+#include "prune/newton_contractor.hpp"
 #include "prune/trapezoid.hpp"
 
 #include <sstream>
@@ -30,6 +31,8 @@ std::unique_ptr<Sequence> make_strategy(const StrategyOptions& options, const fo
         auto inner = std::make_unique<LpRelaxation>(lph, backend);
         members.push_back(std::make_unique<Lifted>(std::move(lph), sub.system.variables.size(), std::move(inner)));
       }
+    } else if (name == "newton") {
+      members.push_back(std::make_unique<IntervalNewton>(sub.system.equations, sub.system.variables.size()));
     } else if (name == "hc4") {
       members.push_back(std::make_unique<Hc4>(sub.system.equations));
     } else {

@@ -54,7 +54,7 @@ struct promote_scalar_arg<linkbox::Interval, T, false>
 }  // namespace internal
 }  // namespace Eigen
 
-namespace linkbox::verify {
+namespace linkbox::newton {
 
 using IMatrix = Eigen::Matrix<Interval, Eigen::Dynamic, Eigen::Dynamic>;
 using IVector = Eigen::Matrix<Interval, Eigen::Dynamic, 1>;
@@ -76,4 +76,4 @@ IMatrix identity_minus(const Eigen::MatrixXd& a, const IMatrix& b);
 // Upper bound of max_i sum_j max|a_ij| over every real matrix in `a` (rounded up).
 double norm_inf_upper(const IMatrix& a);
 
-}  // namespace linkbox::verify
+}  // namespace linkbox::newton

@@ -1,6 +1,6 @@
-#include "verify/interval_newton.hpp"
+#include "prune/newton/interval_newton.hpp"
 
-namespace linkbox::verify {
+namespace linkbox::newton {
 
 namespace {
 
@@ -97,4 +97,4 @@ bool at_most_one_root(const SquareSystem& f, const Box& y, const Eigen::MatrixXd
   return norm_inf_upper(identity_minus(c, f.jacobian(y))) < 1.0;
 }
 
-}  // namespace linkbox::verify
+}  // namespace linkbox::newton

@@ -1,9 +1,9 @@
-#include "verify/square_system.hpp"
+#include "prune/newton/square_system.hpp"
 
 #include <numeric>
 #include <stdexcept>
 
-namespace linkbox::verify {
+namespace linkbox::newton {
 
 SquareSystem::SquareSystem(std::vector<model::Polynomial> equations, std::vector<int> unknowns,
                            Box base)
@@ -71,4 +71,4 @@ Box point_box(const Eigen::VectorXd& x) {
   return b;
 }
 
-}  // namespace linkbox::verify
+}  // namespace linkbox::newton

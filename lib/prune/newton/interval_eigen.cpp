@@ -1,6 +1,6 @@
-#include "verify/interval_eigen.hpp"
+#include "prune/newton/interval_eigen.hpp"
 
-namespace linkbox::verify {
+namespace linkbox::newton {
 
 IVector to_ivector(const Box& box) {
   IVector v(static_cast<Eigen::Index>(box.size()));
@@ -79,4 +79,4 @@ double norm_inf_upper(const IMatrix& a) {
   return best;
 }
 
-}  // namespace linkbox::verify
+}  // namespace linkbox::newton

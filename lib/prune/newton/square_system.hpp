@@ -3,11 +3,11 @@
 // unknowns, every other variable held at a fixed (interval) value. Fixing variables is how a
 // curve (n-1 equations in n variables) becomes square for a crossing certificate.
 #include "model/polynomial.hpp"
-#include "verify/interval_eigen.hpp"
+#include "prune/newton/interval_eigen.hpp"
 
 #include <vector>
 
-namespace linkbox::verify {
+namespace linkbox::newton {
 
 class SquareSystem {
  public:
@@ -42,4 +42,4 @@ class SquareSystem {
 
 Box point_box(const Eigen::VectorXd& x);
 
-}  // namespace linkbox::verify
+}  // namespace linkbox::newton

@@ -5,9 +5,9 @@
 //   image disjoint from X           => no root in X.
 // Both hold for any C; a good C (inverse of a midpoint Jacobian) only makes them succeed.
 // The centre is y = midpoint of X, so anyone holding (F, X, C) recomputes the same image.
-#include "verify/square_system.hpp"
+#include "prune/newton/square_system.hpp"
 
-namespace linkbox::verify {
+namespace linkbox::newton {
 
 enum class Method {
   krawczyk,         // K(X) = y - C F(y) + (I - C F'(X)) (X - y)
@@ -28,4 +28,4 @@ NewtonStep newton_step(Method m, const SquareSystem& f, const Box& x, const Eige
 // makes every Jacobian in F'(y) regular, so F is injective on y (mean-value form).
 bool at_most_one_root(const SquareSystem& f, const Box& y, const Eigen::MatrixXd& c);
 
-}  // namespace linkbox::verify
+}  // namespace linkbox::newton
