@@ -102,3 +102,12 @@ TEST_CASE("limits give a partial result marked incomplete", "[cli]") {
   CHECK(j["stop_reason"] == "box limit reached");
   CHECK(j["headline"].get<std::string>().find("incomplete") != std::string::npos);
 }
+
+TEST_CASE("the float variant is labelled unverified and never claims an exact count", "[cli]") {
+  const std::string out = "cli-float.json";
+  REQUIRE(run("solve " + src("cases/spherical/wrist.toml") + " --quiet --arith float --json " + out) == 0);
+  auto j = read(out);
+  CHECK(j["parameters"]["arith"] == "float (UNVERIFIED)");
+  CHECK(j["verification"]["exact"] == false);
+  CHECK(j["headline"].get<std::string>().rfind("UNVERIFIED", 0) == 0);
+}

@@ -210,7 +210,7 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
       reasons[c.reason]++;
     }
   }
-  report.exact = result.complete && report.unverified == 0 && report.curves == 0 && all_unique &&
+  report.exact = result.complete && result.rigorous && report.unverified == 0 && report.curves == 0 && all_unique &&
                  overlaps_unresolved == 0;
   const int n = report.certified_roots;
   if (report.exact) {
@@ -222,6 +222,7 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     if (report.unverified) report.headline += ", " + std::to_string(report.unverified) + " unresolved";
     if (overlaps_unresolved) report.headline += ", " + std::to_string(overlaps_unresolved) + " overlapping roots unresolved";
     if (!result.complete) report.headline += "; search incomplete (" + result.stop_reason + ")";
+    if (!result.rigorous) report.headline = "UNVERIFIED search (--arith float: boxes were discarded on float evidence, roots may be missing): " + report.headline;
     std::string why;
     for (auto& [r, k] : reasons) why += (why.empty() ? "" : "; ") + r + " x" + std::to_string(k);
     if (!why.empty()) report.headline += " (" + why + ")";

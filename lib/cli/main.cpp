@@ -20,7 +20,7 @@ namespace {
 struct SolveArgs {
   std::string case_file;
   double sigma = 1e-4, rho = 0.99;
-  std::string order = "dfs", prune = "trapezoid", lp = "safe", json_out;
+  std::string order = "dfs", prune = "trapezoid", lp = "safe", arith = "verified", json_out;
   double time_limit = 0;
   long max_boxes = 0;
   int threads = 1;
@@ -56,8 +56,9 @@ void print_summary(const io::LoadedCase& c, const solve::RunOptions& o, const so
   std::printf("case      %s (%s, %s)\n", c.name.c_str(), c.kind.c_str(), c.file.c_str());
   std::string prune;
   for (auto& n : r.contractor_names) prune += (prune.empty() ? "" : ",") + n;
-  std::printf("strategy  prune=%s sigma=%g rho=%g order=%s threads=%d\n", prune.c_str(), o.params.sigma,
-              o.params.rho, o.params.order == solve::Order::depth_first ? "dfs" : "bfs", o.threads);
+  std::printf("strategy  prune=%s sigma=%g rho=%g order=%s threads=%d%s\n", prune.c_str(), o.params.sigma,
+              o.params.rho, o.params.order == solve::Order::depth_first ? "dfs" : "bfs", o.threads,
+              o.strategy.rigorous ? "" : "  arith=float (UNVERIFIED: boxes discarded on float evidence)");
   std::printf("\n%-12s %10s %10s %10s %10s %10s %10s\n", "subproblems", "processed", "empty", "split", "solution",
               "cpu [s]", "wall [s]");
   std::printf("%-12zu %10ld %10ld %10ld %10ld %10.3f %10.3f\n", r.subproblems.size(), r.total.processed,
@@ -92,6 +93,7 @@ int run_solve(const SolveArgs& a) {
   o.params.max_boxes = a.max_boxes;
   o.strategy.contractors = prune::parse_strategy_list(a.prune);
   o.strategy.lp = a.lp;
+  o.strategy.rigorous = a.arith == "verified";
   o.threads = a.threads;
   o.progress = !a.quiet;
   solve::CaseResult r = solve::solve_case(*c.formulation, o);
@@ -153,6 +155,8 @@ int main(int argc, char** argv) {
   solve_cmd->add_option("--order", sa.order, "dfs or bfs")->check(CLI::IsMember({"dfs", "bfs"}));
   solve_cmd->add_option("--prune", sa.prune, "comma-separated contractors, e.g. trapezoid");
   solve_cmd->add_option("--lp", sa.lp, "LP backend: safe or exact")->check(CLI::IsMember({"safe", "exact"}));
+  solve_cmd->add_option("--arith", sa.arith, "verified (default) or float: the UNVERIFIED float variant, for comparison")
+      ->check(CLI::IsMember({"verified", "float"}));
   solve_cmd->add_option("--time-limit", sa.time_limit, "seconds (0 = none)")->check(CLI::NonNegativeNumber);
   solve_cmd->add_option("--max-boxes", sa.max_boxes, "processed boxes (0 = none)")->check(CLI::NonNegativeNumber);
   solve_cmd->add_option("--threads", sa.threads, "threads across sub-problems")->check(CLI::Range(1, 256));

@@ -38,6 +38,7 @@ json result_json(const std::string& case_name, const std::string& case_file,
                      {"order", p.order == solve::Order::depth_first ? "dfs" : "bfs"},
                      {"prune", prune},
                      {"lp", options.strategy.lp},
+                     {"arith", options.strategy.rigorous ? "verified" : "float (UNVERIFIED)"},
                      {"time_limit", p.time_limit},
                      {"max_boxes", p.max_boxes},
                      {"threads", options.threads}};

@@ -31,16 +31,21 @@ bool project_power(Interval& x, const FastInterval& p, int e) {
 
 }  // namespace
 
-Hc4::Hc4(const std::vector<model::Polynomial>& equations) {
+Hc4::Hc4(const std::vector<model::Polynomial>& equations, bool rigorous) : rigorous_(rigorous) {
   for (auto& e : equations) {
     std::vector<Term> terms;
-    for (auto& [p, c] : e.terms()) terms.push_back({c, p});
+    for (auto& [p, c] : e.terms()) terms.push_back({rigorous ? c : Interval(median(c)), p});
     equations_.push_back(std::move(terms));
   }
 }
 
 Outcome Hc4::contract(Box& box) {
+  if (!rigorous_) return revise(box);  // FastInterval without the guard rounds to nearest
   RoundingGuard guard;
+  return revise(box);
+}
+
+Outcome Hc4::revise(Box& box) {
   bool shrunk = false;
   for (auto& terms : equations_) {
     const size_t n = terms.size();

@@ -19,6 +19,10 @@ IntervalNewton::IntervalNewton(const std::vector<model::Polynomial>& equations, 
     : system_(make_system(equations, variables)), method_(method) {}
 
 Outcome IntervalNewton::contract(Box& box) {
+  // Where the Jacobian is singular Newton removes nothing; the plain range test still does.
+  const newton::IVector f = system_.values(box);
+  for (int i = 0; i < f.size(); ++i)
+    if (!zero_in(f(i))) return Outcome::empty;
   const Eigen::MatrixXd jm = newton::midpoint(system_.jacobian(box));
   if (!jm.allFinite()) return Outcome::unchanged;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm);

@@ -18,11 +18,13 @@ std::unique_ptr<Sequence> make_strategy(const StrategyOptions& options, const fo
     if (name == "trapezoid") {
       if (!sub.system.is_multi_affine())
         throw std::invalid_argument("--prune trapezoid needs a multi-affine system; this one is not");
-      members.push_back(std::make_unique<Trapezoid>(sub.system.equations));
+      members.push_back(std::make_unique<Trapezoid>(sub.system.equations, options.rigorous));
     } else if (name == "lp") {
       if (options.lp != "safe" && options.lp != "exact")
         throw std::invalid_argument("--lp must be safe or exact, not '" + options.lp + "'");
-      const auto backend = options.lp == "exact" ? lp::LpBackend::exact : lp::LpBackend::safe;
+      const auto backend = !options.rigorous         ? lp::LpBackend::float_trusted
+                           : options.lp == "exact" ? lp::LpBackend::exact
+                                                   : lp::LpBackend::safe;
       if (sub.lph) {
         members.push_back(std::make_unique<LpRelaxation>(*sub.lph, backend));
       } else {
@@ -34,7 +36,7 @@ std::unique_ptr<Sequence> make_strategy(const StrategyOptions& options, const fo
     } else if (name == "newton") {
       members.push_back(std::make_unique<IntervalNewton>(sub.system.equations, sub.system.variables.size()));
     } else if (name == "hc4") {
-      members.push_back(std::make_unique<Hc4>(sub.system.equations));
+      members.push_back(std::make_unique<Hc4>(sub.system.equations, options.rigorous));
     } else {
       throw std::invalid_argument("unknown pruning strategy '" + name + "'");
     }

@@ -12,6 +12,7 @@ namespace linkbox::prune {
 struct StrategyOptions {
   std::vector<std::string> contractors{"trapezoid"};
   std::string lp = "safe";  // safe | exact
+  bool rigorous = true;     // false: --arith float, the unverified variant
 };
 
 // Throws std::invalid_argument for an unknown name or a strategy that does not apply to

@@ -12,14 +12,18 @@ namespace linkbox::prune {
 class Trapezoid final : public Contractor {
  public:
   // Throws std::invalid_argument if an equation is not multi-affine.
-  explicit Trapezoid(const std::vector<model::Polynomial>& equations);
-  std::string name() const override { return "trapezoid"; }
+  // rigorous = false is the unverified float variant (--arith float): midpoint coefficients
+  // and round-to-nearest, so a root can be cut; for comparison only.
+  explicit Trapezoid(const std::vector<model::Polynomial>& equations, bool rigorous = true);
+  std::string name() const override { return rigorous_ ? "trapezoid" : "trapezoid-float"; }
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override { return std::make_unique<Trapezoid>(*this); }
 
  private:
   std::vector<model::MultiAffine> equations_;
   std::vector<FastInterval> corners_;  // scratch
+  bool rigorous_ = true;
+  Outcome clip(Box& box);
 };
 
 // Clips [lo, hi] to where the trapezoid with left side [min_lo, max_lo] (at x = lo) and

@@ -101,6 +101,7 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
     }
   }
   result.contractor_names = options.strategy.contractors;
+  result.rigorous = options.strategy.rigorous;
   if (!result.complete) result.stop_reason = budget.reason();
   result.seconds = budget.elapsed();
   return result;

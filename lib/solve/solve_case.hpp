@@ -26,6 +26,7 @@ struct CaseResult {
   std::vector<prune::Counters> counters;  // summed over sub-problems
   bool complete = true;
   std::string stop_reason;  // why incomplete
+  bool rigorous = true;     // false: float pruning (--arith float), exclusion not proved
   double seconds = 0;       // wall clock of the whole run
 };
 

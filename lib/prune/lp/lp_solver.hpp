@@ -23,7 +23,8 @@ struct LpBound {
   double value = 0;
 };
 
-enum class LpBackend { safe, exact };
+// float: CLP's float answers trusted as they are (the unverified variant, for comparison).
+enum class LpBackend { safe, exact, float_trusted };
 
 class LpSolver {
  public:

@@ -13,9 +13,10 @@ namespace linkbox::prune::lp {
 
 class SafeLp final : public LpSolver {
  public:
-  SafeLp();
+  // trust_float: return CLP's own optimum and infeasibility verdict, unchecked (--arith float).
+  explicit SafeLp(bool trust_float = false);
   ~SafeLp() override;
-  std::string name() const override { return "safe"; }
+  std::string name() const override { return trust_float_ ? "float" : "safe"; }
   void load(const LinearProgram& program) override;
   void set_column_bounds(int col, double lo, double hi) override;
   LpBound minimize(int col) override;
@@ -34,6 +35,7 @@ class SafeLp final : public LpSolver {
   std::unique_ptr<ClpSimplex> model_;
   int objective_col_ = -1;  // the single non-zero of CLP's current objective
   long iterations_ = 0;
+  bool trust_float_ = false;
 };
 
 }  // namespace linkbox::prune::lp
