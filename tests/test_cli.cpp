@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
 #include <fstream>
 #include <sys/wait.h>
 
@@ -17,6 +19,16 @@ int run(const std::string& args) {
 
 std::string src(const std::string& p) { return std::string(LINKBOX_SOURCE_DIR) + "/" + p; }
 
+// Output files go to a fresh temporary folder, not the working directory.
+std::string tmp(const std::string& name) {
+  static const std::filesystem::path dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("linkbox-cli-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return (dir / name).string();
+}
+
 nlohmann::json read(const std::string& file) {
   std::ifstream in(file);
   return nlohmann::json::parse(in);
@@ -27,7 +39,7 @@ void write(const std::string& file, const nlohmann::json& j) { std::ofstream(fil
 }  // namespace
 
 TEST_CASE("solve writes the documented JSON and check accepts it", "[cli]") {
-  const std::string out = "cli-wrist.json";
+  const std::string out = tmp("cli-wrist.json");
   REQUIRE(run("solve " + src("cases/spherical/wrist.toml") + " --quiet --json " + out) == 0);
   auto j = read(out);
   for (auto key : {"case", "variables", "parameters", "complete", "stats", "solutions", "clusters", "certified_roots", "headline"})
@@ -40,7 +52,7 @@ TEST_CASE("solve writes the documented JSON and check accepts it", "[cli]") {
 }
 
 TEST_CASE("check fails on tampered certificates", "[cli]") {
-  const std::string out = "cli-agile.json", bad = "cli-tampered.json";
+  const std::string out = tmp("cli-agile.json"), bad = tmp("cli-tampered.json");
   REQUIRE(run("solve " + src("cases/spherical/agile-eye.toml") + " --quiet --json " + out) == 0);
   const auto j = read(out);
   REQUIRE(run("check " + out) == 0);
@@ -95,7 +107,7 @@ TEST_CASE("bad input exits with code 2", "[cli]") {
 }
 
 TEST_CASE("limits give a partial result marked incomplete", "[cli]") {
-  const std::string out = "cli-limited.json";
+  const std::string out = tmp("cli-limited.json");
   REQUIRE(run("solve " + src("cases/spherical/four-loop.toml") + " --quiet --max-boxes 200 --json " + out) == 0);
   auto j = read(out);
   CHECK(j["complete"] == false);
@@ -104,7 +116,7 @@ TEST_CASE("limits give a partial result marked incomplete", "[cli]") {
 }
 
 TEST_CASE("the float variant is labelled unverified and never claims an exact count", "[cli]") {
-  const std::string out = "cli-float.json";
+  const std::string out = tmp("cli-float.json");
   REQUIRE(run("solve " + src("cases/spherical/wrist.toml") + " --quiet --arith float --json " + out) == 0);
   auto j = read(out);
   CHECK(j["parameters"]["arith"] == "float (UNVERIFIED)");
