@@ -59,6 +59,11 @@ void print_summary(const io::LoadedCase& c, const solve::RunOptions& o, const so
   std::printf("strategy  prune=%s sigma=%g rho=%g order=%s threads=%d%s\n", prune.c_str(), o.params.sigma,
               o.params.rho, o.params.order == solve::Order::depth_first ? "dfs" : "bfs", o.threads,
               o.strategy.rigorous ? "" : "  arith=float (UNVERIFIED: boxes discarded on float evidence)");
+  if (f.subproblem_count() == 1)
+    if (auto sub = f.subproblem(0); sub.lph)
+      std::printf("model     %zu primary + %zu dummy variables; %zu linear, %zu parabolic, %zu hyperbolic equations\n",
+                  sub.lph->primary.size(), sub.lph->variables.size() - sub.lph->primary.size(), sub.lph->linear.size(),
+                  sub.lph->parabolic.size(), sub.lph->hyperbolic.size());
   std::printf("\n%-12s %10s %10s %10s %10s %10s %10s\n", "subproblems", "processed", "empty", "split", "solution",
               "cpu [s]", "wall [s]");
   std::printf("%-12zu %10ld %10ld %10ld %10ld %10.3f %10.3f\n", r.subproblems.size(), r.total.processed,

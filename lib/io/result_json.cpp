@@ -42,6 +42,15 @@ json result_json(const std::string& case_name, const std::string& case_file,
                      {"time_limit", p.time_limit},
                      {"max_boxes", p.max_boxes},
                      {"threads", options.threads}};
+  // Model size of an L/P/H formulation (iterated-LP paper): primary, dummy, #L, #P, #H.
+  if (formulation.subproblem_count() == 1) {
+    const auto sub = formulation.subproblem(0);
+    if (sub.lph) {
+      const auto& m = *sub.lph;
+      j["model"] = {{"primary", m.primary.size()}, {"dummy", m.variables.size() - m.primary.size()},
+                    {"linear", m.linear.size()}, {"parabolic", m.parabolic.size()}, {"hyperbolic", m.hyperbolic.size()}};
+    }
+  }
   j["complete"] = result.complete;
   if (!result.complete) j["stop_reason"] = result.stop_reason;
   json stats = stats_json(result.total);
