@@ -31,4 +31,14 @@ Box angles_to_tangents(std::uint64_t chart, const Box& angles) {
   return t;
 }
 
+Box tangents_to_angles(std::uint64_t chart, const Box& t) {
+  const Interval pi = rigorous::pi(), two_pi = pi * Interval(2.0);
+  Box out(t.size());
+  for (size_t j = 0; j < t.size(); ++j) {
+    out[j] = rigorous::angle_from_half_tangent(t[j], static_cast<int>(chart >> j & 1));
+    if (out[j].lower() > pi.upper()) out[j] -= two_pi;
+  }
+  return out;
+}
+
 }  // namespace linkbox::formulate

@@ -12,5 +12,8 @@ std::uint64_t half_turn_chart(const Box& angles);
 // Rigorous t-box of angles in the chart; throws std::domain_error if an angle interval is
 // too wide (meets the chart's pole at phi = s*pi + pi).
 Box angles_to_tangents(std::uint64_t chart, const Box& angles);
+// Rigorous angles phi = 2 atan(t) + s*pi, reported in (-pi, pi] where the whole interval
+// allows (an interval across pi stays as it is).
+Box tangents_to_angles(std::uint64_t chart, const Box& tangents);
 
 }  // namespace linkbox::formulate

@@ -186,21 +186,6 @@ Vec3 cross(const Vec3& u, const Vec3& v) {
   return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
 }
 
-// p with variable `var` replaced by `value`.
-Polynomial substitute(const Polynomial& p, int var, const Interval& value) {
-  Polynomial r;
-  for (auto& [powers, c] : p.terms()) {
-    Interval coef = c;
-    Polynomial mono = Polynomial::constant(Interval(1.0));
-    for (auto [v, e] : powers) {
-      if (v == var) coef *= e == 1 ? value : boost::numeric::pow(value, e);
-      else mono = mono * Polynomial::variable(v).pow(e);
-    }
-    r += mono * coef;
-  }
-  return r;
-}
-
 Polynomial renumber(const Polynomial& p, const std::vector<int>& index) {
   Polynomial r;
   for (auto& [powers, c] : p.terms()) {
@@ -218,6 +203,108 @@ Interval angle(const Interval& y, const Interval& x) {
   return rigorous::atan2(y, x);
 }
 
+struct Eq {
+  Polynomial p;
+  std::string name;
+  int line;
+};
+
+// x = offset + scale * v[variable], or x = offset when variable < 0.
+struct Affine {
+  int variable = -1;
+  Interval scale{1.0}, offset{0.0};
+};
+
+// p with variable `var` replaced by the polynomial r.
+Polynomial substitute(const Polynomial& p, int var, const Polynomial& r) {
+  Polynomial out;
+  for (auto& [powers, c] : p.terms()) {
+    Polynomial term = Polynomial::constant(c);
+    for (auto [v, e] : powers) term = term * (v == var ? r.pow(e) : Polynomial::variable(v).pow(e));
+    out += term;
+  }
+  return out;
+}
+
+size_t nonlinear_monomials(const std::vector<Eq>& eqs) {
+  std::set<model::Powers> m;
+  for (auto& eq : eqs)
+    for (auto& [powers, c] : eq.p.terms()) {
+      int degree = 0;
+      for (auto [v, e] : powers) degree += e;
+      if (degree >= 2) m.insert(powers);
+    }
+  return m.size();
+}
+
+// Eliminates variables through linear equations, until none applies:
+//  - c x + k = 0 fixes x (always: the ground makes e.g. d_{g+2}.z = cos(alpha_{g+1}) one);
+//  - c x + c' y + k = 0 gives x = -(k + c' y) / c, substituted when that does not add
+//    products or squares (so the L/P/H model loses a variable and gains no dummy); x is the
+//    one with the larger coefficient, so nothing is multiplied up, and y keeps to the values
+//    that put x in its domain.
+// The defining equation is consumed. With interval coefficients the substituted system
+// contains every system with coefficients in the intervals: nothing is lost. Returns, per
+// variable, what it became (itself when kept).
+std::vector<Affine> eliminate_linear(std::vector<Eq>& eqs, std::vector<model::Variable>& vars, const std::string& file) {
+  std::vector<Affine> as(vars.size());
+  for (size_t v = 0; v < vars.size(); ++v) as[v].variable = static_cast<int>(v);
+  auto eliminate = [&](size_t k, int x, const Interval& offset, int y, const Interval& scale) {
+    const Polynomial r = y < 0 ? Polynomial::constant(offset)
+                               : Polynomial::constant(offset) + Polynomial::variable(y) * scale;
+    eqs.erase(eqs.begin() + k);
+    for (auto& eq : eqs) eq.p = substitute(eq.p, x, r);
+    for (auto& a : as)
+      if (a.variable == x) a = y < 0 ? Affine{-1, Interval(1.0), a.offset + a.scale * offset}
+                                     : Affine{y, a.scale * scale, a.offset + a.scale * offset};
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t k = 0; k < eqs.size() && !changed; ++k) {
+      const Eq& eq = eqs[k];
+      if (eq.p.total_degree() != 1) continue;
+      const std::vector<int> v = eq.p.variables();
+      if (v.size() > 2) continue;
+      auto coef = [&](int var) { return eq.p.terms().at(model::Powers{{var, 1}}); };
+      const Interval k0 = eq.p.constant_term();
+      if (v.size() == 1) {
+        const Interval c = coef(v[0]);
+        if (zero_in(c)) continue;
+        Interval x = -k0 / c;
+        if (!intersect(x, vars[v[0]].domain, x))
+          throw LinkageError(file, eq.line,
+                             "the linkage cannot be assembled: '" + eq.name + "' puts " + vars[v[0]].name +
+                                 " outside its range");
+        eliminate(k, v[0], x, -1, Interval(0.0));
+        changed = true;
+        continue;
+      }
+      const bool first = norm(coef(v[0])) >= norm(coef(v[1]));
+      const int x = first ? v[0] : v[1], y = first ? v[1] : v[0];
+      const Interval cx = coef(x), cy = coef(y);
+      if (zero_in(cx)) continue;
+      const Interval offset = -k0 / cx, scale = -cy / cx;
+      std::vector<Eq> trial = eqs;
+      trial.erase(trial.begin() + k);
+      const size_t before = nonlinear_monomials(trial);
+      const Polynomial r = Polynomial::constant(offset) + Polynomial::variable(y) * scale;
+      for (auto& t : trial) t.p = substitute(t.p, x, r);
+      if (nonlinear_monomials(trial) > before) continue;
+      // y only where x = offset + scale y lies in x's domain.
+      if (!zero_in(scale)) {
+        const Interval allowed = (vars[x].domain - offset) / scale;
+        if (!intersect(vars[y].domain, allowed, vars[y].domain))
+          throw LinkageError(file, eq.line,
+                             "the linkage cannot be assembled: '" + eq.name + "' puts " + vars[x].name +
+                                 " outside its range");
+      }
+      eliminate(k, x, offset, y, scale);
+      changed = true;
+    }
+  }
+  return as;
+}
+
 }  // namespace
 
 LinkageFormulation::LinkageFormulation(LinkageCase c, LinkageOptions options)
@@ -229,10 +316,9 @@ LinkageFormulation::LinkageFormulation(LinkageCase c, LinkageOptions options)
 }
 
 void LinkageFormulation::index_case() {
-  std::map<std::string, int> joint_index;
   for (auto& loop : case_.loops)
     for (auto& e : loop.links)
-      if (joint_index.emplace(e.joint, static_cast<int>(joint_names_.size())).second) {
+      if (joint_index_.emplace(e.joint, static_cast<int>(joint_names_.size())).second) {
         joint_names_.push_back(e.joint);
         prismatic_.push_back(e.prismatic);
         has_prismatic_ = has_prismatic_ || e.prismatic;
@@ -247,7 +333,7 @@ void LinkageFormulation::index_case() {
     std::vector<int> ids;
     for (size_t i = 0; i < n; ++i) {
       const LoopLink& e = loop.links[i];
-      const int in = joint_index.at(e.joint), out = joint_index.at(loop.links[(i + 1) % n].joint);
+      const int in = joint_index_.at(e.joint), out = joint_index_.at(loop.links[(i + 1) % n].joint);
       auto [it, fresh] = normal_index.emplace(std::make_tuple(in, e.link, out), static_cast<int>(normals_.size()));
       if (fresh) {
         Normal nm;
@@ -272,7 +358,7 @@ void LinkageFormulation::index_case() {
     const auto& loop = case_.loops[l];
     const size_t n = loop.links.size();
     for (size_t i = 0; i < n; ++i) {
-      Output o{loop.links[i].joint, joint_index.at(loop.links[i].joint), loop_normals_[l][(i + n - 1) % n],
+      Output o{loop.links[i].joint, joint_index_.at(loop.links[i].joint), loop_normals_[l][(i + n - 1) % n],
                loop_normals_[l][i]};
       if (!listed[o.joint]) {
         listed[o.joint] = true;
@@ -308,7 +394,7 @@ void LinkageFormulation::ground_frame() {
       nm.ground = true;
       const Interval zero(0.0), one(1.0);
       auto set = [&](int vector, const Interval& x, const Interval& y, const Interval& z) {
-        vectors_[vector] = {Coordinate{-1, x}, Coordinate{-1, y}, Coordinate{-1, z}};
+        vectors_[vector] = {Coordinate{-1, one, x}, Coordinate{-1, one, y}, Coordinate{-1, one, z}};
         constant_[vector] = true;
       };
       set(static_cast<int>(joint_names_.size()) + loop_normals_[l][g], one, zero, zero);
@@ -358,18 +444,13 @@ void LinkageFormulation::build_model() {
   for (auto& loop : case_.loops)
     for (auto& e : loop.links) {
       if (!e.prismatic) continue;
-      const int j = static_cast<int>(std::find(joint_names_.begin(), joint_names_.end(), e.joint) - joint_names_.begin());
+      const int j = joint_index_.at(e.joint);
       if (offsets_[j].variable >= 0) continue;
       offsets_[j].variable = static_cast<int>(vars.size());
       offset[j] = Polynomial::variable(static_cast<int>(vars.size()));
       vars.push_back({"offset[" + e.joint + "]", e.d});
     }
 
-  struct Eq {
-    Polynomial p;
-    std::string name;
-    int line;
-  };
   std::vector<Eq> eqs;
   auto add3 = [&](const VecP& v, const std::string& name, int line) {
     for (int k = 0; k < 3; ++k) eqs.push_back({v[k], name + " (" + std::string(axis_name[k] + 1) + ")", line});
@@ -382,7 +463,7 @@ void LinkageFormulation::build_model() {
   std::vector<int> first_line(joints, 0);
   for (auto& loop : case_.loops)
     for (auto& e : loop.links) {
-      const int j = static_cast<int>(std::find(joint_names_.begin(), joint_names_.end(), e.joint) - joint_names_.begin());
+      const int j = joint_index_.at(e.joint);
       if (!first_line[j]) first_line[j] = e.line;
     }
   for (int j = 0; j < joints; ++j) eqs.push_back({dot(vec[j], vec[j]) - one, "|d[" + joint_names_[j] + "]| = 1", first_line[j]});
@@ -430,36 +511,12 @@ void LinkageFormulation::build_model() {
 
   // Angle constraints between axes.
   for (auto& ac : case_.angle_constraints) {
-    auto idx = [&](const std::string& name) {
-      return static_cast<int>(std::find(joint_names_.begin(), joint_names_.end(), name) - joint_names_.begin());
-    };
-    eqs.push_back({dot(vec[idx(ac.joint1)], vec[idx(ac.joint2)]) - Polynomial::constant(rigorous::cos(ac.angle)),
+    eqs.push_back({dot(vec[joint_index_.at(ac.joint1)], vec[joint_index_.at(ac.joint2)]) - Polynomial::constant(rigorous::cos(ac.angle)),
                    "angle " + (ac.name.empty() ? ac.joint1 + "," + ac.joint2 : ac.name) + ": d . d' = cos(angle)",
                    ac.line});
   }
 
-  // Substitute every coordinate that a linear equation in that one variable fixes, until
-  // none is left (the ground makes e.g. d_{g+2}.z = cos(alpha_{g+1}) such an equation).
-  std::vector<bool> fixed(vars.size(), false);
-  std::vector<Interval> value(vars.size());
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (auto& eq : eqs) {
-      const std::vector<int> v = eq.p.variables();
-      if (v.size() != 1 || eq.p.total_degree() != 1) continue;
-      const Interval c = eq.p.terms().at(model::Powers{{v[0], 1}});
-      if (zero_in(c)) continue;
-      Interval x = -eq.p.constant_term() / c;
-      if (!intersect(x, vars[v[0]].domain, x))
-        throw LinkageError(case_.file, eq.line,
-                           "the linkage cannot be assembled: '" + eq.name + "' puts " + vars[v[0]].name +
-                               " outside its range");
-      fixed[v[0]] = true;
-      value[v[0]] = x;
-      for (auto& other : eqs) other.p = substitute(other.p, v[0], x);
-      changed = true;
-    }
-  }
+  const std::vector<Affine> elimination = eliminate_linear(eqs, vars, case_.file);
 
   // Drop equations left constant (0 = 0 up to rounding); a non-zero constant is a
   // contradiction already between ground and parameters.
@@ -497,11 +554,17 @@ void LinkageFormulation::build_model() {
   }
   primary.equation_names = names;
 
+  // Coordinates: through the eliminations to a surviving variable or a constant; a variable
+  // that occurs in no equation is unconstrained and stands for its domain.
   auto place = [&](Coordinate& c) {
     if (c.variable < 0) return;
-    const int v = c.variable;
-    c.variable = index[v];
-    c.value = fixed[v] ? value[v] : vars[v].domain;  // unused when a variable remains
+    const Affine& r = elimination[c.variable];
+    if (r.variable >= 0 && index[r.variable] >= 0) {
+      c = {index[r.variable], r.scale, r.offset};
+    } else {
+      const Interval free = r.variable >= 0 ? r.scale * vars[r.variable].domain : Interval(0.0);
+      c = {-1, Interval(1.0), r.offset + free};
+    }
   };
   for (size_t v = 0; v < vectors_.size(); ++v)
     for (auto& c : vectors_[v]) place(c);
@@ -550,10 +613,17 @@ std::array<Interval, 3> LinkageFormulation::vector_value(int vector, const Box& 
   }
   Vec3 r;
   for (int k = 0; k < 3; ++k) {
-    const Coordinate& c = vectors_[vector][k];
-    r[k] = c.variable >= 0 ? box.at(c.variable) : c.value;
+    r[k] = vectors_[vector][k].at(box);
   }
   return r;
+}
+
+bool LinkageFormulation::Coordinate::is_variable() const {
+  return variable >= 0 && scale.lower() == 1 && scale.upper() == 1 && value.lower() == 0 && value.upper() == 0;
+}
+
+Interval LinkageFormulation::Coordinate::at(const Box& box) const {
+  return variable < 0 ? value : value + scale * box.at(variable);
 }
 
 Box LinkageFormulation::to_output(size_t, const Box& box) const {
@@ -561,8 +631,7 @@ Box LinkageFormulation::to_output(size_t, const Box& box) const {
   Box out;
   for (auto& o : outputs_) {
     if (prismatic_[o.joint]) {
-      const Coordinate& c = offsets_[o.joint];
-      out.push_back(c.variable >= 0 ? box.at(c.variable) : c.value);
+      out.push_back(offsets_[o.joint].at(box));
       continue;
     }
     // theta = angle from a_in to a_out about d; both normals may carry positive scale factors.

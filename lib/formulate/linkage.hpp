@@ -8,11 +8,15 @@
 // d_i = z_{i-1} is the axis of joint i, a_i = x_i the common normal from joint i to joint
 // i+1, theta_i the angle from a_{i-1} to a_i about d_i. A prismatic joint fixes theta_i
 // (a_{i-1} . a_i = cos theta_i, a_{i-1} x a_i = sin theta_i d_i) and lets d_i vary.
-// The equations are simplified (ground, single-variable substitution) and lifted to L/P/H.
+// Only what a case needs is modelled: the ground link's vectors are constants, normals of
+// zero-length links are left out (see LinkageOptions), coordinates that a linear equation in
+// one variable fixes, or in two variables ties to another without adding products, are
+// substituted, equations left constant are dropped; the rest is lifted to L/P/H (to_lph).
 #include "formulate/formulation.hpp"
 
 #include <array>
 #include <iosfwd>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -97,14 +101,27 @@ class LinkageFormulation final : public Formulation {
   Box to_output(size_t index, const Box& box) const override;
   bool outputs_are_angles() const override { return !has_prismatic_; }
 
+  // Certification (linkage_natural.cpp): single loops are certified in their DH loop
+  // closure (loop_closure.hpp) over the half-angle tangents of a chart of half-turn shifts.
+  // Multi-loop linkages and angle constraints have no natural system yet (verify says so).
+  std::uint64_t chart_for(const Box& output_hull) const override;
+  NaturalSystem natural_system(std::uint64_t chart) const override;
+  Box output_to_natural(std::uint64_t chart, const Box& output) const override;
+  Box natural_to_output(std::uint64_t chart, const Box& natural) const override;
+
   const LinkageCase& linkage_case() const { return case_; }
   ModelSize model_size() const;
 
-  // Where the model keeps each coordinate of a vector: a variable of the sub-problem, or a
-  // rigorous constant (ground frame, substituted, or unconstrained: then its domain).
+  // Where the model keeps each coordinate of a vector: value + scale * v[variable], v being
+  // the sub-problem's variables, or the rigorous constant `value` when variable < 0 (ground
+  // frame, substituted, or unconstrained: then its domain). A coordinate that is a variable
+  // of its own has scale 1 and value 0; others were eliminated through a linear equation.
   struct Coordinate {
-    int variable = -1;  // >= 0: index into the sub-problem's variables
-    Interval value;     // when variable < 0
+    int variable = -1;
+    Interval scale{1.0};
+    Interval value{0.0};
+    bool is_variable() const;  // variable >= 0 with scale exactly 1 and value exactly 0
+    Interval at(const Box& box) const;
   };
   using VectorModel = std::array<Coordinate, 3>;
 
@@ -138,6 +155,7 @@ class LinkageFormulation final : public Formulation {
   LinkageCase case_;
   LinkageOptions options_;
   std::vector<std::string> joint_names_;
+  std::map<std::string, int> joint_index_;
   std::vector<bool> prismatic_;
   std::vector<std::vector<int>> loop_normals_;  // [loop][position] -> normal index
   std::vector<Normal> normals_;

@@ -212,16 +212,7 @@ std::vector<std::string> SphericalFormulation::output_names() const {
   return n;
 }
 
-Box SphericalFormulation::to_output(size_t index, const Box& box) const {
-  Box out(box.size());
-  const Interval two_pi = rigorous::pi() * Interval(2.0);
-  for (size_t j = 0; j < box.size(); ++j) {
-    out[j] = rigorous::angle_from_half_tangent(box[j], static_cast<int>(index >> j & 1));
-    // Report shifted angles in (-pi, pi] when the whole interval lies above pi.
-    if (out[j].lower() > rigorous::pi().upper()) out[j] -= two_pi;
-  }
-  return out;
-}
+Box SphericalFormulation::to_output(size_t index, const Box& box) const { return tangents_to_angles(index, box); }
 
 std::vector<MatrixOutput> SphericalFormulation::declared_outputs(size_t index, const Box& box) const {
   std::vector<MatrixOutput> r;
