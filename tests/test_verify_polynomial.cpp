@@ -1,0 +1,76 @@
+// Verification outcomes that must never be over-claimed: a double root, a root on the edge
+// of the domain, a box without roots; and the exact statement when everything is proved.
+#include "io/case_file.hpp"
+#include "solve/solve_case.hpp"
+#include "verify/certify_case.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace linkbox;
+
+namespace {
+
+verify::VerifyReport solve_text(const std::string& toml, std::vector<std::string> prune = {"hc4", "newton"}) {
+  io::LoadedCase c = io::load_case_text(toml, "inline.toml");
+  solve::RunOptions o;
+  o.progress = false;
+  o.strategy.contractors = std::move(prune);
+  o.params.sigma = 1e-6;
+  auto r = solve::solve_case(*c.formulation, o);
+  REQUIRE(r.complete);
+  return verify::verify_case(*c.formulation, r, {{}, o.params.sigma});
+}
+
+}  // namespace
+
+TEST_CASE("circle and line: exactly two roots", "[verify][polynomial]") {
+  auto v = solve_text(R"(kind = "polynomial"
+name = "t"
+variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] } ]
+equations = [ "x^2 + y^2 - 1", "x - y" ])");
+  CHECK(v.exact);
+  CHECK(v.certified_roots == 2);
+}
+
+TEST_CASE("a double root is never certified", "[verify][polynomial]") {
+  // The line y = 1 touches the circle at (0, 1).
+  auto v = solve_text(R"(kind = "polynomial"
+name = "t"
+variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] } ]
+equations = [ "x^2 + y^2 - 1", "y - 1" ])");
+  CHECK(v.certified_roots == 0);
+  CHECK_FALSE(v.exact);
+  REQUIRE(v.unverified >= 1);
+  for (auto& c : v.clusters)
+    if (c.status == verify::ClusterStatus::unverified)
+      CHECK((c.reason == "singular Jacobian" || c.reason == "inflation failed"));
+}
+
+TEST_CASE("a root on the edge of the domain is reported as such, not counted", "[verify][polynomial]") {
+  // Roots (1/sqrt2, 1/sqrt2) inside and (1, 0)... : x^2 + y^2 = 1 with y = 0 has x = 1 on
+  // the domain's edge x <= 1, and x = -1 inside.
+  auto v = solve_text(R"(kind = "polynomial"
+name = "t"
+variables = [ { name = "x", domain = [-2, 1] }, { name = "y", domain = [-1, 1] } ]
+equations = [ "x^2 + y^2 - 1", "y" ])");
+  CHECK(v.certified_roots == 1);
+  CHECK_FALSE(v.exact);
+  int edge = 0;
+  for (auto& c : v.clusters)
+    if (c.status == verify::ClusterStatus::unverified) {
+      CHECK(c.reason.find("domain boundary") != std::string::npos);
+      CHECK(c.certificate.status == verify::Status::certified);  // it exists, just beyond doubt only near the edge
+      ++edge;
+    }
+  CHECK(edge == 1);
+}
+
+TEST_CASE("no real root: the whole domain is proved empty", "[verify][polynomial]") {
+  auto v = solve_text(R"(kind = "polynomial"
+name = "t"
+variables = [ { name = "x", domain = [-3, 3] }, { name = "y", domain = [-3, 3] } ]
+equations = [ "x^2 + y^2 + 1", "x - y" ])");
+  CHECK(v.exact);
+  CHECK(v.certified_roots == 0);
+  CHECK(v.headline == "exactly 0 roots in the domain, each in its certified box");
+}
