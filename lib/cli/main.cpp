@@ -65,7 +65,7 @@ void print_summary(const io::LoadedCase& c, const solve::RunOptions& o, const so
                   sub.lph->primary.size(), sub.lph->variables.size() - sub.lph->primary.size(), sub.lph->linear.size(),
                   sub.lph->parabolic.size(), sub.lph->hyperbolic.size());
   std::printf("\n%-12s %10s %10s %10s %10s %10s %10s\n", "subproblems", "processed", "empty", "split", "solution",
-              "cpu [s]", "wall [s]");
+              "search [s]", "wall [s]");
   std::printf("%-12zu %10ld %10ld %10ld %10ld %10.3f %10.3f\n", r.subproblems.size(), r.total.processed,
               r.total.empty, r.total.split, r.total.solution, r.total.seconds, r.seconds);
   std::printf("\n%s\n", r.complete ? "complete: every box of the domain was processed"
