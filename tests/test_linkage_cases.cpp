@@ -126,7 +126,7 @@ TEST_CASE("cyclohexane: the chairs are certified roots inside solution boxes, th
       }
     CHECK(in_box >= 1);
   }
-  auto v = verify::verify_case(*c.formulation, r, {{}, o.params.sigma});
+  auto v = verify::verify_case(*c.formulation, r);
   CHECK(v.certified_roots == 2);
   CHECK(v.curves >= 1);
   CHECK_FALSE(v.exact);

@@ -18,7 +18,7 @@ verify::VerifyReport solve_text(const std::string& toml, std::vector<std::string
   o.params.sigma = 1e-6;
   auto r = solve::solve_case(*c.formulation, o);
   REQUIRE(r.complete);
-  return verify::verify_case(*c.formulation, r, {{}, o.params.sigma});
+  return verify::verify_case(*c.formulation, r);
 }
 
 }  // namespace

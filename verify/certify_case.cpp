@@ -41,13 +41,18 @@ Eigen::VectorXd centre(const Box& b) {
   return c;
 }
 
-// Ratio of the smallest to the largest singular value of the float Jacobian at `x`.
-double conditioning(const std::vector<model::Polynomial>& f, const Box& x) {
-  if (f.size() != x.size() || f.empty()) return 0;
+// Whether the float Jacobian is rank-deficient at a solution near the box's centre (reached
+// by Gauss-Newton with the pseudo-inverse, which converges onto a curve). A heuristic that
+// only decides how to report a cluster; it proves nothing.
+bool rank_deficient_near(const std::vector<model::Polynomial>& f, const Box& x) {
+  if (f.size() != x.size() || f.empty()) return false;
   auto s = SquareSystem::all_unknown(f, x.size());
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.jacobian_at(centre(x)));
+  Eigen::VectorXd p = centre(x);
+  for (int it = 0; it < 30; ++it) p -= s.jacobian_at(p).completeOrthogonalDecomposition().solve(s.values_at(p));
+  if (!(s.values_at(p).norm() < 1e-9)) return false;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.jacobian_at(p));
   const auto& sv = svd.singularValues();
-  return sv(0) > 0 ? sv(sv.size() - 1) / sv(0) : 0;
+  return !(sv(sv.size() - 1) > 1e-6 * sv(0));
 }
 
 // For a square system that is rank-deficient along a curve, the equation whose removal
@@ -152,14 +157,28 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
                         : "natural system not square (" + std::to_string(sys.equations.size()) + " equations, " +
                               std::to_string(n) + " unknowns)";
     }
-    // Curve: many boxes spanning far more than sigma, with a rank-deficient Jacobian (or a
-    // system with fewer equations than unknowns).
-    const bool long_cluster = c.boxes.size() >= 4 && max_width(c.hull) > 20 * options.sigma;
-    if (c.status == ClusterStatus::unverified && long_cluster && !start.empty() &&
-        (sys.equations.size() + 1 == n || (square && conditioning(sys.equations, start) < 1e-6))) {
-      c.status = ClusterStatus::curve;
-      c.reason = "positive-dimensional: boxes follow a curve";
-      certify_curve(f, member, c, options.newton);
+    // Curve: many boxes spanning far more than any one of them, with a rank-deficient
+    // Jacobian near the boxes (or fewer equations than unknowns).
+    double box_width = 0;
+    for (auto& b : member) box_width = std::max(box_width, max_width(b));
+    const bool long_cluster = c.boxes.size() >= 4 && max_width(c.hull) > 2 * box_width;
+    bool rank_deficient = sys.equations.size() + 1 == n;
+    for (size_t k = 0; square && !rank_deficient && k < member.size(); k += std::max<size_t>(1, member.size() / 5)) {
+      try {
+        rank_deficient = rank_deficient_near(sys.equations, f.output_to_natural(c.chart, member[k]));
+      } catch (const std::exception&) {
+      }
+    }
+    if (c.status == ClusterStatus::unverified && long_cluster && !start.empty() && rank_deficient) {
+      // Called a curve only when the curve provably crosses some of its boxes; a singular
+      // isolated root (e.g. a double root) crosses none and stays unverified.
+      ClusterReport curve = c;
+      certify_curve(f, member, curve, options.newton);
+      if (curve.crossings_certified > 0) {
+        c = std::move(curve);
+        c.status = ClusterStatus::curve;
+        c.reason = "positive-dimensional: boxes follow a curve";
+      }
     }
     if (c.status == ClusterStatus::certified) {
       roots.push_back(c.root);

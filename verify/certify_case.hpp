@@ -38,7 +38,6 @@ struct ClusterReport {
 
 struct VerifyOptions {
   NewtonOptions newton;
-  double sigma = 1e-4;  // the search's sigma: curve clusters span far more than this
 };
 
 struct VerifyReport {

@@ -105,9 +105,7 @@ int run_solve(const SolveArgs& a) {
   print_summary(c, o, r);
   nlohmann::json j = io::result_json(c.name, c.file, *c.formulation, o, r);
   if (!a.no_verify) {
-    verify::VerifyOptions vo;
-    vo.sigma = a.sigma;
-    verify::VerifyReport v = verify::verify_case(*c.formulation, r, vo);
+    verify::VerifyReport v = verify::verify_case(*c.formulation, r);
     print_roots(c, v);
     io::add_verification(j, *c.formulation, v);
   }
