@@ -35,6 +35,15 @@ Outcome Sequence::contract(Box& box) {
   return total;
 }
 
+void Sequence::add_counters(const Sequence& other) {
+  for (size_t i = 0; i < counters_.size() && i < other.counters_.size(); ++i) {
+    counters_[i].calls += other.counters_[i].calls;
+    counters_[i].emptied += other.counters_[i].emptied;
+    counters_[i].seconds += other.counters_[i].seconds;
+    counters_[i].volume_removed += other.counters_[i].volume_removed;
+  }
+}
+
 std::unique_ptr<Contractor> Sequence::clone() const {
   std::vector<std::unique_ptr<Contractor>> m;
   for (auto& c : members_) m.push_back(c->clone());

@@ -38,6 +38,7 @@ class Sequence final : public Contractor {
   std::unique_ptr<Contractor> clone() const override;
   const std::vector<std::unique_ptr<Contractor>>& members() const { return members_; }
   const std::vector<Counters>& counters() const { return counters_; }
+  void add_counters(const Sequence& other);  // same members, e.g. a clone run elsewhere
 
  private:
   std::vector<std::unique_ptr<Contractor>> members_;

@@ -1,7 +1,10 @@
 #include "solve/branch_and_prune.hpp"
 
+#include <algorithm>
+#include <condition_variable>
 #include <deque>
 #include <mutex>
+#include <thread>
 
 namespace linkbox::solve {
 
@@ -39,51 +42,106 @@ bool Budget::take_box() {
   return false;
 }
 
-Result branch_and_prune(const Box& start, prune::Contractor& contractor, std::span<const int> split_dims,
-                        const Params& params, Budget& budget) {
+namespace {
+
+// A box with its place in the search tree: '0' = lower half, '1' = upper half.
+struct Node {
+  Box box;
+  std::string path;
+};
+
+enum class Verdict { empty, solution, split };
+
+// Shrinks until empty, small, or no longer shrinking by more than rho.
+Verdict shrink(Box& box, prune::Contractor& contractor, std::span<const int> dims, const Params& params, Stats& stats) {
+  while (true) {
+    Box before = box;
+    stats.shrinks++;
+    if (contractor.contract(box) == prune::Outcome::empty) return Verdict::empty;
+    const double size = max_width(box, dims);
+    if (size <= params.sigma) return Verdict::solution;
+    if (volume_ratio(before, box, dims) > params.rho) return Verdict::split;
+  }
+}
+
+}  // namespace
+
+Result branch_and_prune(const Box& start, prune::Sequence& contractor, std::span<const int> split_dims,
+                        const Params& params, Budget& budget, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   Result r;
-  std::deque<Box> pending{start};
-  while (!pending.empty()) {
-    if (!budget.take_box()) {
-      r.complete = false;
-      break;
-    }
-    Box box = std::move(pending.back());
-    pending.pop_back();
-    r.stats.processed++;
-    bool empty = false;
-    double size = 0;
+  std::deque<Node> pending{{start, ""}};
+  std::vector<std::pair<std::string, Box>> solutions;
+  std::mutex m;
+  std::condition_variable cv;
+  int busy = 0;
+  bool stopped = false;
+
+  auto worker = [&](prune::Contractor& c) {
+    Stats stats;
+    std::vector<std::pair<std::string, Box>> found;
+    std::unique_lock lock(m);
     while (true) {
-      Box before = box;
-      r.stats.shrinks++;
-      if (contractor.contract(box) == prune::Outcome::empty) {
-        empty = true;
+      cv.wait(lock, [&] { return stopped || !pending.empty() || busy == 0; });
+      if (stopped || pending.empty()) break;
+      if (!budget.take_box()) {
+        stopped = true;
         break;
       }
-      size = max_width(box, split_dims);
-      if (size <= params.sigma || volume_ratio(before, box, split_dims) > params.rho) break;
-    }
-    if (empty) {
-      r.stats.empty++;
-    } else if (size <= params.sigma) {
-      r.stats.solution++;
-      r.solutions.push_back(std::move(box));
-    } else {
-      r.stats.split++;
-      auto [a, b] = bisect(box, widest_dimension(box, split_dims));
-      // Depth-first pops from the back: push the upper half first so the lower half is
-      // explored first. Breadth-first takes from the front instead (see below).
-      if (params.order == Order::depth_first) {
-        pending.push_back(std::move(b));
-        pending.push_back(std::move(a));
+      // Depth-first takes the newest box, breadth-first the oldest.
+      Node node = std::move(params.order == Order::depth_first ? pending.back() : pending.front());
+      params.order == Order::depth_first ? pending.pop_back() : pending.pop_front();
+      ++busy;
+      lock.unlock();
+
+      stats.processed++;
+      const Verdict v = shrink(node.box, c, split_dims, params, stats);
+      std::pair<Node, Node> halves;
+      if (v == Verdict::empty) {
+        stats.empty++;
+      } else if (v == Verdict::solution) {
+        stats.solution++;
+        found.emplace_back(std::move(node.path), std::move(node.box));
       } else {
-        pending.push_front(std::move(a));
-        pending.push_front(std::move(b));
+        stats.split++;
+        auto [a, b] = bisect(node.box, widest_dimension(node.box, split_dims));
+        halves = {{std::move(a), node.path + '0'}, {std::move(b), node.path + '1'}};
       }
+
+      lock.lock();
+      --busy;
+      if (v == Verdict::split) {
+        // Depth-first: the lower half on top. Breadth-first: lower half first in line.
+        if (params.order == Order::depth_first) {
+          pending.push_back(std::move(halves.second));
+          pending.push_back(std::move(halves.first));
+        } else {
+          pending.push_back(std::move(halves.first));
+          pending.push_back(std::move(halves.second));
+        }
+      }
+      cv.notify_all();
     }
+    cv.notify_all();
+    r.stats += stats;
+    for (auto& f : found) solutions.push_back(std::move(f));
+  };
+
+  std::vector<std::unique_ptr<prune::Contractor>> clones;
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) {
+    clones.push_back(contractor.clone());
+    pool.emplace_back(worker, std::ref(*clones.back()));
   }
-  if (!r.complete) r.pending.assign(pending.begin(), pending.end());
+  worker(contractor);
+  for (auto& t : pool) t.join();
+  for (auto& c : clones) contractor.add_counters(static_cast<const prune::Sequence&>(*c));
+
+  std::sort(solutions.begin(), solutions.end(), [](auto& a, auto& b) { return a.first < b.first; });
+  for (auto& s : solutions) r.solutions.push_back(std::move(s.second));
+  r.complete = !stopped;
+  if (stopped)
+    for (auto& n : pending) r.pending.push_back(std::move(n.box));
   r.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

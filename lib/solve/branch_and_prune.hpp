@@ -58,7 +58,11 @@ struct Result {
   std::vector<Box> pending;  // the unexplored boxes when incomplete
 };
 
-Result branch_and_prune(const Box& start, prune::Contractor& contractor, std::span<const int> split_dims,
-                        const Params& params, Budget& budget);
+// With threads > 1, boxes are processed in parallel by clones of `contractor` (their
+// counters are added back into it). Every box is processed the same way whatever the
+// thread, and solutions are returned in the order of their place in the search tree (the
+// depth-first order), so the output does not depend on the thread count or on scheduling.
+Result branch_and_prune(const Box& start, prune::Sequence& contractor, std::span<const int> split_dims,
+                        const Params& params, Budget& budget, int threads = 1);
 
 }  // namespace linkbox::solve

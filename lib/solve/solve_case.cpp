@@ -48,6 +48,9 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
   CaseResult result;
   result.subproblems.resize(n);
   Budget budget(options.params);
+  // Threads go across sub-problems when there are enough of them, else inside each one.
+  const int across = std::max(1, std::min<int>(options.threads, static_cast<int>(n)));
+  const int inside = n >= static_cast<size_t>(options.threads) ? 1 : options.threads;
   std::atomic<size_t> next{0}, done{0};
   std::exception_ptr error;
   std::mutex error_mutex;
@@ -65,7 +68,7 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
           s.complete = false;
         } else {
           auto contractor = prune::make_strategy(options.strategy, sub);
-          Result r = branch_and_prune(sub.system.domain(), *contractor, sub.split_dims, options.params, budget);
+          Result r = branch_and_prune(sub.system.domain(), *contractor, sub.split_dims, options.params, budget, inside);
           s.solutions = std::move(r.solutions);
           s.stats = r.stats;
           s.complete = r.complete;
@@ -81,9 +84,8 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
   };
   {
     Progress progress(options.progress, n, budget, done);
-    const int threads = std::max(1, std::min<int>(options.threads, static_cast<int>(n)));
     std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    for (int t = 1; t < across; ++t) pool.emplace_back(worker);
     worker();
     for (auto& t : pool) t.join();
   }
