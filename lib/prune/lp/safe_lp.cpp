@@ -21,6 +21,13 @@ double to_clp(double v) {
   return v;
 }
 
+// CLP can cycle or stall on degenerate relaxations (seen on bicyclohexane). A capped solve
+// only loses pruning: the N-S bound holds for whatever duals it stopped with.
+void cap_effort(ClpSimplex& model) {
+  model.setMaximumIterations(200 + 20 * (model.numberRows() + model.numberColumns()));
+  model.setMaximumSeconds(2.0);
+}
+
 // The elastic LP: rows  row_lo <= A x + e+ - e- <= row_hi,  x in X,  e+-  >= 0, minimizing
 // sum(e+ + e-). Its optimum is positive exactly when the original LP is infeasible, and its
 // row duals (|y| <= 1 at optimality) are then a Farkas certificate for the original rows.
@@ -49,6 +56,7 @@ std::vector<double> elastic_duals(const LinearProgram& lp) {
   ClpSimplex model;
   model.setLogLevel(0);
   model.loadProblem(matrix, col_lo.data(), col_hi.data(), cost.data(), row_lo.data(), row_hi.data());
+  cap_effort(model);
   model.primal();
   std::vector<double> y(model.dualRowSolution(), model.dualRowSolution() + m);
   for (double& v : y) v = std::clamp(v, -1.0, 1.0);  // any y is checkable; these are the useful ones
@@ -83,6 +91,7 @@ void SafeLp::load(const LinearProgram& program) {
   // only a candidate Farkas certificate; proves_infeasible() checks it.
   model_->setSpecialOptions(model_->specialOptions() | 32 | 2097152);
   model_->loadProblem(matrix, col_lo.data(), col_hi.data(), objective.data(), row_lo.data(), row_hi.data());
+  cap_effort(*model_);
   objective_col_ = -1;
   iterations_ = 0;
 }
