@@ -39,24 +39,27 @@ NaturalSystem LinkageFormulation::natural_system(std::uint64_t chart) const {
   return s;
 }
 
+namespace {
+// Maps the revolute entries through a chart function; prismatic offsets stay as they are.
+template <class Map>
+Box on_revolute(const LinkageLoop& loop, const Box& b, Map map) {
+  const std::uint64_t revolute = revolute_mask(loop);
+  const Box mapped = map(b);
+  Box out = b;
+  for (size_t i = 0; i < out.size(); ++i)
+    if (revolute >> i & 1) out[i] = mapped[i];
+  return out;
+}
+}  // namespace
+
 Box LinkageFormulation::output_to_natural(std::uint64_t chart, const Box& output) const {
   if (!single_loop(case_)) return output;
-  const std::uint64_t revolute = revolute_mask(case_.loops[0]);
-  const Box t = angles_to_tangents(chart, output);
-  Box n = output;
-  for (size_t i = 0; i < n.size(); ++i)
-    if (revolute >> i & 1) n[i] = t[i];
-  return n;
+  return on_revolute(case_.loops[0], output, [&](const Box& b) { return angles_to_tangents(chart, b); });
 }
 
 Box LinkageFormulation::natural_to_output(std::uint64_t chart, const Box& natural) const {
   if (!single_loop(case_)) return natural;
-  const std::uint64_t revolute = revolute_mask(case_.loops[0]);
-  const Box a = tangents_to_angles(chart, natural);
-  Box out = natural;
-  for (size_t i = 0; i < out.size(); ++i)
-    if (revolute >> i & 1) out[i] = a[i];
-  return out;
+  return on_revolute(case_.loops[0], natural, [&](const Box& b) { return tangents_to_angles(chart, b); });
 }
 
 }  // namespace linkbox::formulate
