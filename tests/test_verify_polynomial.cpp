@@ -74,3 +74,29 @@ equations = [ "x^2 + y^2 + 1", "x - y" ])");
   CHECK(v.certified_roots == 0);
   CHECK(v.headline == "exactly 0 roots in the domain, each in its certified box");
 }
+
+TEST_CASE("a polynomial case goes through the L/P/H path (safe and exact LP) and loses no planted root", "[verify][polynomial][lp]") {
+  io::LoadedCase c = io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/polynomial/planted-cubic.toml");
+  const double r[3] = {-1, 0.5, 2};
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (const char* backend : {"safe", "exact"}) {
+    solve::RunOptions o;
+    o.progress = false;
+    o.strategy.contractors = {"lp"};
+    o.strategy.lp = backend;
+    o.params.sigma = 1e-3;
+    auto res = solve::solve_case(*c.formulation, o);
+    REQUIRE(res.complete);
+    for (auto& p : perms) {
+      int hits = 0;
+      for (auto& s : res.subproblems)
+        for (auto& b : s.solutions)
+          hits += contains(b[0], r[p[0]]) && contains(b[1], r[p[1]]) && contains(b[2], r[p[2]]);
+      INFO(backend);
+      CHECK(hits >= 1);
+    }
+    auto v = verify::verify_case(*c.formulation, res);
+    CHECK(v.certified_roots == 6);
+    CHECK(v.exact);
+  }
+}
