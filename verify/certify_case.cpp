@@ -94,6 +94,11 @@ void certify_curve(const formulate::Formulation& f, const std::vector<Box>& outp
     }
     // Fix the variable that varies most across the box (the curve's direction there).
     x.certificate = certify_curve_crossing(eqs, natural, widest_dimension(natural), options);
+    // A crossing of the square subsystem is a point of the solution set only where the
+    // dropped equation vanishes too; near an ill-conditioned isolated root it does not.
+    if (x.certificate.status == Status::certified && x.dropped_equation >= 0 &&
+        !zero_in(sys.equations[x.dropped_equation].eval(x.certificate.box)))
+      x.certificate.status = Status::unverified;
     c.crossings_certified += x.certificate.status == Status::certified;
     c.crossings.push_back(std::move(x));
   }
@@ -161,7 +166,10 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     // Jacobian near the boxes (or fewer equations than unknowns).
     double box_width = 0;
     for (auto& b : member) box_width = std::max(box_width, max_width(b));
-    const bool long_cluster = c.boxes.size() >= 4 && max_width(c.hull) > 2 * box_width;
+    // Below ~1e-6 a curve cannot be told from an ill-conditioned isolated root in double
+    // precision (a root's enclosure stretches by eps / sigma_min): such clusters stay
+    // unverified rather than be called curves.
+    const bool long_cluster = c.boxes.size() >= 4 && max_width(c.hull) > 2 * box_width && max_width(c.hull) > 1e-6;
     bool rank_deficient = sys.equations.size() + 1 == n;
     for (size_t k = 0; square && !rank_deficient && k < member.size(); k += std::max<size_t>(1, member.size() / 5)) {
       try {
@@ -170,11 +178,12 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
       }
     }
     if (c.status == ClusterStatus::unverified && long_cluster && !start.empty() && rank_deficient) {
-      // Called a curve only when the curve provably crosses some of its boxes; a singular
-      // isolated root (e.g. a double root) crosses none and stays unverified.
+      // Called a curve only when a solution curve of the subsystem, on which the dropped
+      // equation vanishes, crosses at least half of its boxes; a singular isolated root (a
+      // double root, an ill-conditioned one) does not, and stays unverified.
       ClusterReport curve = c;
       certify_curve(f, member, curve, options.newton);
-      if (curve.crossings_certified > 0) {
+      if (2 * static_cast<size_t>(curve.crossings_certified) >= curve.boxes.size()) {
         c = std::move(curve);
         c.status = ClusterStatus::curve;
         c.reason = "positive-dimensional: boxes follow a curve";

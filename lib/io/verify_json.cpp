@@ -168,8 +168,12 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
         auto eqs = sys.equations;
         const int dropped = x.at("dropped_equation");
         if (dropped >= 0 && dropped < static_cast<int>(eqs.size())) eqs.erase(eqs.begin() + dropped);
-        if (!verify::recheck(eqs, certificate_from(x)))
+        const verify::Certificate cert = certificate_from(x);
+        if (!verify::recheck(eqs, cert))
           out.failures.push_back(where + ": a curve-crossing certificate does not hold");
+        else if (dropped >= 0 && dropped < static_cast<int>(sys.equations.size()) &&
+                 !zero_in(sys.equations[dropped].eval(cert.box)))
+          out.failures.push_back(where + ": the dropped equation does not vanish on a crossing box");
       }
     }
   }
