@@ -20,6 +20,7 @@ Writes benchmark_lp.md and benchmark_lp.csv beside this script and prints the ma
 import argparse
 import csv
 import datetime
+import json
 import os
 import statistics
 import sys
@@ -48,7 +49,14 @@ def main():
     ap.add_argument("--time-limit", type=float, default=600, help="seconds per run, 0 = none (default 600)")
     ap.add_argument("--cases", nargs="+", default=None, help="subset (comma- or space-separated); default %s" % ",".join(DEFAULT_CASES))
     ap.add_argument("--out", default=HERE)
+    ap.add_argument("--report-only", action="store_true",
+                    help="rewrite benchmark_lp.md/.csv from the last run's raw results (runs/benchmark_lp.raw.json)")
     args = ap.parse_args()
+    raw_path = os.path.join(args.out, "runs", "benchmark_lp.raw.json")
+    if args.report_only:
+        with open(raw_path) as f:
+            raw = json.load(f)
+        return report(raw, args.out)
     binary = os.path.join(os.path.abspath(args.build), "linkbox")
     if not os.access(binary, os.X_OK):
         sys.exit("no linkbox binary at %s" % binary)
@@ -79,6 +87,8 @@ def main():
                 if err:
                     r["error"] = err
                     continue
+                # Keep only what the report needs (not the solution boxes).
+                res = {k: res.get(k) for k in ("stats", "contractors", "complete", "stop_reason", "parameters")}
                 r["last"] = res
                 if not res.get("complete", True):
                     r["timeout"] = True
@@ -90,20 +100,30 @@ def main():
                 r["cpu"].append(cpu)
                 print("  %s --lp %s run %d: %.2f s wall, %.2f s CPU" % (key, b, i + 1, r["wall"][-1], cpu), file=sys.stderr, flush=True)
         results[key] = per
+    raw = {"started": started, "load": load, "runs": args.runs, "time_limit": args.time_limit, "cases": keys,
+           "cpu": cpu_model(), "cores": os.cpu_count() or 0, "results": results}
+    os.makedirs(os.path.dirname(raw_path), exist_ok=True)
+    with open(raw_path, "w") as f:
+        json.dump(raw, f, indent=1)
+    return report(raw, args.out)
+
+
+def report(raw, out_dir):
+    keys, results = raw["cases"], raw["results"]
 
     def cells(r):
         """(status, wall, cpu, processed, empty, solution, runs)"""
         if r["error"] and r["last"] is None:
             return ("error", None, None, None, None, None, 0)
         if r["timeout"] and r["last"] is None:  # killed by the watchdog: no JSON
-            return ("timeout", r["timeout_wall"], None, None, None, None, 1)
+            return ("killed", r["timeout_wall"], None, None, None, None, 1)
         st = r["last"]["stats"]
         if r["timeout"]:
             return ("timeout", r["timeout_wall"], r["timeout_cpu"], st["processed"], st["empty"], st["solution_boxes"], 1)
         return ("ok", statistics.median(r["wall"]), statistics.median(r["cpu"]), st["processed"], st["empty"],
                 st["solution_boxes"], len(r["wall"]))
 
-    with open(os.path.join(args.out, "benchmark_lp.csv"), "w", newline="") as f:
+    with open(os.path.join(out_dir, "benchmark_lp.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["case", "sigma", "rho", "lp", "status", "runs", "seconds", "cpu_seconds", "processed", "empty",
                     "solution_boxes", "cuiksuite_cpu_seconds", "time_limit"])
@@ -113,11 +133,13 @@ def main():
                 w.writerow([key, CASES[key]["sigma"], CASES[key]["rho"], b, s, n,
                             "" if wall is None else "%.3f" % wall, "" if cpu is None else "%.3f" % cpu,
                             "" if pr is None else pr, "" if em is None else em, "" if so is None else so,
-                            CUIK.get(key, ""), args.time_limit])
+                            CUIK.get(key, ""), raw["time_limit"]])
 
     def t(s, v):
         if s == "error":
             return "error"
+        if s == "killed":
+            return "> %.0f (killed)" % v if v is not None else "killed"
         if s == "timeout":
             return "> %.0f (timeout)" % v if v is not None else "timeout"
         return "%.2f" % v
@@ -131,8 +153,8 @@ def main():
              "linkbox `solve --prune lp --no-verify`, rho = 0.95, depth-first, one thread; medians of up to %d runs per "
              "backend, the backends alternating; time limit %s per run. Machine: %s, %d cores, load average %.1f at the "
              "start (%s; the machine is shared, so CPU time is the steadier figure)." % (
-                 args.runs, ("%g s" % args.time_limit) if args.time_limit > 0 else "none", cpu_model(),
-                 os.cpu_count() or 0, load, started), "",
+                 raw["runs"], ("%g s" % raw["time_limit"]) if raw["time_limit"] > 0 else "none", raw["cpu"],
+                 raw["cores"], raw["load"], raw["started"]), "",
              "| case | sigma | CuikSuite CPU [s] | safe: wall [s] | safe: CPU [s] | safe: processed / empty / solution "
              "| exact: wall [s] | exact: CPU [s] | exact: processed / empty / solution | exact / safe (CPU) |",
              "|---|---|---|---|---|---|---|---|---|---|"]
@@ -152,7 +174,8 @@ def main():
         else:
             row.append("–")
         lines.append("| " + " | ".join(row) + " |")
-    lines += ["", "Time per LP shrink call (the contractor's own seconds / calls, last run; meaningful for a timeout too):", ""]
+    lines += ["", "Time per call of the LP contractor (one shrink pass: up to two LPs per variable), its own seconds / "
+              "calls in the last run; meaningful for a timeout too:", ""]
     for key in keys:
         parts = []
         for b in BACKENDS:
@@ -172,6 +195,11 @@ def main():
                   CUIK["6r-rigid"], CUIK["cyclohexane"], CUIK["6r-mobile"], CUIK["bicyclohexane"],
                   (" (%s not run here: see section5.py)" % ", ".join(missing)) if missing else ""),
               "",
+              "A timeout: the run reached --time-limit (linkbox checks it every 16 processed boxes, so a run with "
+              "exact LPs overshoots it by up to 16 boxes' work) and reports what it had processed; \"killed\": it had "
+              "not stopped at max(2 x limit, limit + 600 s) wall and was killed by this script, leaving no counts. "
+              "A backend that times out is not repeated on that case.",
+              "",
               "`safe` bounds each LP optimum from the float solution's dual (Neumaier-Shcherbina) and excludes a box "
               "only on a checked certificate; `exact` solves every LP exactly (CGAL, Gmpzf), so it is the reference, "
               "not the fast path. Both must give the same boxes up to the last bits of a bound, so the box counts "
@@ -181,7 +209,7 @@ def main():
         if a[0] == "ok" and b[0] == "ok" and a[3:6] != b[3:6]:
             lines.append("- %s: box counts differ between safe %s and exact %s." % (key, a[3:6], b[3:6]))
     text = "\n".join(lines) + "\n"
-    with open(os.path.join(args.out, "benchmark_lp.md"), "w") as f:
+    with open(os.path.join(out_dir, "benchmark_lp.md"), "w") as f:
         f.write(text)
     print(text)
     return 0

@@ -10,16 +10,17 @@ For every case: the model size (primary / dummy variables; linear / parabolic / 
 equations), sigma, rho, and the processed / empty / solution / split box counts and the time.
 Cases and parameters are the paper's: rigid 6R (sigma = 1e-4), mobile 6R and bicyclohexane
 (sigma = 0.1), all with rho = 0.95, plus cyclohexane (sigma = 0.1, rho = 0.95; not in the
-paper's text, but CuikSuite's reference timing uses it). By default pruning is the paper's: the iterated
-LP relaxation alone (`--prune lp`, safe LP bounds), depth-first, one thread. Several --prune
-values (e.g. `--prune lp hc4,lp`) give one linkbox row per value; the first one's JSON is the
-one kept for the plots.
+paper's text, but CuikSuite's reference timing uses it). By default pruning is the paper's:
+the iterated LP relaxation alone (`--prune lp`, safe LP bounds), depth-first, one thread.
+Several --prune values (e.g. `--prune lp hc4,lp`) give one linkbox row per value; the first
+one's JSON is the one kept for the plots.
 
 Times are medians over --runs runs with --no-verify: wall clock of the search (the JSON's
 stats.seconds) and the CPU time of the linkbox process (user + system, from getrusage), the
 fairer figure on a shared machine. One more run with verification gives the clusters
-(certified roots, curves) and the JSON that is kept; its verification time is reported apart. A run that reaches --time-limit is reported as incomplete with what it had
-processed; the case is then not repeated.
+(certified roots, curves) and the JSON that is kept; its verification time is reported
+apart. A run that reaches --time-limit is reported as incomplete with what it had processed;
+the case is then not repeated (nor verified).
 
 Writes section5.md and section5.csv beside this script, keeps the JSON of the last run of
 each case in runs/<case>.json (plot_curves.py reads them) and its table row in
