@@ -1,0 +1,53 @@
+// Every strategy must certify the same roots on the bundled cases: the certified boxes of
+// one strategy each overlap exactly one of another's (angles modulo 2 pi).
+#include "io/case_file.hpp"
+#include "solve/solve_case.hpp"
+#include "verify/certify_case.hpp"
+#include "verify/cluster.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace linkbox;
+
+namespace {
+
+std::vector<Box> certified_roots(const io::LoadedCase& c, const std::vector<std::string>& prune) {
+  solve::RunOptions o;
+  o.progress = false;
+  o.strategy.contractors = prune;
+  auto r = solve::solve_case(*c.formulation, o);
+  REQUIRE(r.complete);
+  auto v = verify::verify_case(*c.formulation, r);
+  CHECK(v.exact);
+  std::vector<Box> roots;
+  for (auto& cl : v.clusters)
+    if (cl.status == verify::ClusterStatus::certified && cl.duplicate_of < 0) roots.push_back(cl.root);
+  return roots;
+}
+
+}  // namespace
+
+TEST_CASE("strategies agree on the certified roots of the bundled cases", "[strategies]") {
+  const std::vector<std::pair<std::string, std::vector<std::vector<std::string>>>> runs = {
+      {"cases/spherical/wrist.toml", {{"trapezoid"}, {"trapezoid", "newton"}, {"hc4", "newton"}, {"lp"}, {"hc4", "lp"}}},
+      {"cases/spherical/agile-eye.toml", {{"trapezoid"}, {"trapezoid", "newton"}, {"trapezoid", "lp"}}},
+      {"cases/polynomial/circle-line.toml", {{"hc4"}, {"newton"}, {"lp"}, {"hc4", "lp"}}},
+      {"cases/polynomial/planted-cubic.toml", {{"hc4"}, {"newton"}, {"hc4", "lp"}}},
+  };
+  for (auto& [file, strategies] : runs) {
+    io::LoadedCase c = io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + file);
+    const std::vector<bool> periodic(c.formulation->output_names().size(), c.formulation->outputs_are_angles());
+    const auto reference = certified_roots(c, strategies[0]);
+    CHECK(!reference.empty());
+    for (size_t s = 1; s < strategies.size(); ++s) {
+      INFO(file << " strategy " << s);
+      const auto other = certified_roots(c, strategies[s]);
+      REQUIRE(other.size() == reference.size());
+      for (auto& a : other) {
+        int matches = 0;
+        for (auto& b : reference) matches += verify::boxes_touch(a, b, periodic);
+        CHECK(matches == 1);
+      }
+    }
+  }
+}
