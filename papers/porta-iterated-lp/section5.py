@@ -25,7 +25,8 @@ the case is then not repeated (nor verified).
 Writes section5.md and section5.csv beside this script, keeps the JSON of the last run of
 each case in runs/<case>.json (plot_curves.py reads them) and its table row in
 runs/row-<case>-<prune>.json, and prints the markdown. With --cases, the other cases' rows
-are taken from those row files (so a slow case can be re-run alone); --only drops them.
+are taken from those row files (so a slow case can be re-run alone); --only drops them;
+--report-only runs nothing and rewrites the tables from the row files.
 """
 import argparse
 import csv
@@ -216,10 +217,12 @@ def main():
     ap.add_argument("--lp", default="safe", choices=["safe", "exact"], help="LP backend (default safe)")
     ap.add_argument("--only", action="store_true",
                     help="with --cases: tables hold only these cases (default: other cases' rows are kept from runs/row-*.json)")
+    ap.add_argument("--report-only", action="store_true",
+                    help="run nothing: rewrite section5.md/.csv from runs/row-*.json")
     ap.add_argument("--out", default=HERE, help="where section5.md/.csv and runs/ go (default: beside this script)")
     args = ap.parse_args()
     binary = os.path.join(os.path.abspath(args.build), "linkbox")
-    if not os.access(binary, os.X_OK):
+    if not args.report_only and not os.access(binary, os.X_OK):
         sys.exit("no linkbox binary at %s (build it: cmake --build %s --target linkbox_cli)" % (binary, args.build))
     keys = ORDER if not args.cases else [k for c in args.cases for k in c.split(",") if k]
     for k in keys:
@@ -230,6 +233,8 @@ def main():
     started = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     rows = []
+    if args.report_only:
+        keys = []  # no runs: every row comes from runs/row-*.json
     # The slow bicyclohexane runs last, so that the quick cases are done first; rows keep
     # the paper's order.
     for k in sorted(keys, key=lambda k: (k == "bicyclohexane", keys.index(k))):
@@ -241,7 +246,7 @@ def main():
         r.update({"started": started, "load": load, "time_limit": args.time_limit, "runs_requested": args.runs, "lp": args.lp})
         with open(os.path.join(json_dir, "row-%s-%s.json" % (r["case"], r["prune"].replace(",", "-"))), "w") as f:
             json.dump(r, f, indent=1)
-    if args.cases and not args.only:
+    if (args.cases or args.report_only) and not args.only:
         # Keep the other cases' rows from earlier invocations (runs/row-*.json), so that one
         # slow case can be re-run alone.
         for k in ORDER:
@@ -321,8 +326,15 @@ def main():
                 ver += "; curve crossings certified: %d of %d" % tuple(r["crossings"])
         else:
             ver = "not verified (search incomplete)" if not r["complete"] else "not verified"
-        notes.append("- **%s**, `--prune %s`: %d solution boxes in %d clusters (%s); %d shrink passes (%.1f per processed box); "
-                     "%s%s" % (r["case"], r["prune"], r["solution_boxes"], r["clusters"], cs, r["shrinks"] or 0,
+        if not r["complete"]:
+            ver += "; stopped after %.0f s with %.0f%% of the processed boxes empty" % (
+                r["wall"], 100.0 * r["empty"] / max(r["processed"], 1))
+            if (r["shrinks"] or 0) < 1.2 * r["processed"]:
+                ver += (" and about one shrink pass per box: the LP pass rarely removes more than 1 - rho of a "
+                        "box's volume, so nearly every box is emptied or split at once")
+        clustered = ("in %d clusters (%s)" % (r["clusters"], cs)) if r["verify_seconds"] is not None else "(not clustered)"
+        notes.append("- **%s**, `--prune %s`: %d solution boxes %s; %d shrink passes (%.1f per processed box); "
+                     "%s%s" % (r["case"], r["prune"], r["solution_boxes"], clustered, r["shrinks"] or 0,
                                (r["shrinks"] or 0) / max(r["processed"], 1), ver,
                                "" if r["deterministic"] else "; box counts differed between runs (last run shown)"))
         if r.get("error"):
@@ -340,9 +352,10 @@ def main():
     lines += ["",
               "Reading the comparison: linkbox's model of a 6R loop is smaller than the paper's (the paper's "
               "vector formulation has more primary and dummy variables), so the box counts are not expected to "
-              "match one for one; sigma bounds the box size in the search variables (the paper's as well as ours), "
-              "not in the joint angles, and a curve case's solution-box count depends on how long the curve is in "
-              "those variables."]
+              "match one for one. sigma bounds the longest side of a solution box in the split variables (the "
+              "components of the unit vectors, in the paper as here), not in the joint angles, so a solution box of a "
+              "curve case spans some tenths of a radian in the plots, and the number of solution boxes depends on "
+              "how long the curve is in those variables."]
     text = "\n".join(lines) + "\n"
     with open(os.path.join(args.out, "section5.md"), "w") as f:
         f.write(text)
