@@ -51,3 +51,23 @@ TEST_CASE("strategies agree on the certified roots of the bundled cases", "[stra
     }
   }
 }
+
+TEST_CASE("each contractor reports its own work, LPs included", "[strategies]") {
+  io::LoadedCase c = io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/polynomial/planted-cubic.toml");
+  solve::RunOptions o;
+  o.progress = false;
+  o.strategy.contractors = {"hc4", "lp"};
+  auto r = solve::solve_case(*c.formulation, o);
+  REQUIRE(r.complete);
+  REQUIRE(r.counters.size() == 2);
+  const auto &hc4 = r.counters[0], &lp = r.counters[1];
+  CHECK(hc4.calls > 0);
+  CHECK(hc4.lps_solved == 0);
+  CHECK(hc4.lp_iterations == 0);
+  // Each LP call that gets past its interval checks solves a min and a max per variable of
+  // the lifted system's primary part (x, y, z), at most 6 LPs, and CLP pivots on some.
+  CHECK(lp.calls > 0);
+  CHECK(lp.lps_solved > 0);
+  CHECK(lp.lps_solved <= 6 * lp.calls);
+  CHECK(lp.lp_iterations > 0);
+}

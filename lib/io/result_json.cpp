@@ -62,7 +62,8 @@ json result_json(const std::string& case_name, const std::string& case_file,
   for (size_t k = 0; k < result.counters.size(); ++k) {
     auto& c = result.counters[k];
     contractors.push_back({{"name", result.contractor_names.at(k)}, {"calls", c.calls}, {"emptied", c.emptied},
-                           {"volume_removed", c.volume_removed}, {"seconds", c.seconds}});
+                           {"volume_removed", c.volume_removed}, {"seconds", c.seconds},
+                           {"lps_solved", c.lps_solved}, {"lp_iterations", c.lp_iterations}});
   }
   j["contractors"] = contractors;
   json subs = json::array(), sols = json::array();

@@ -13,14 +13,28 @@ std::string Sequence::name() const {
   return n;
 }
 
+Counters& Counters::operator+=(const Counters& o) {
+  calls += o.calls;
+  emptied += o.emptied;
+  seconds += o.seconds;
+  volume_removed += o.volume_removed;
+  lps_solved += o.lps_solved;
+  lp_iterations += o.lp_iterations;
+  return *this;
+}
+
 Outcome Sequence::contract(Box& box) {
   Outcome total = Outcome::unchanged;
   for (size_t i = 0; i < members_.size(); ++i) {
     auto t0 = std::chrono::steady_clock::now();
     Box before = box;
-    Outcome o = members_[i]->contract(box);
+    Contractor& member = *members_[i];
+    const long lps = member.lps_solved(), iterations = member.lp_iterations();
+    Outcome o = member.contract(box);
     Counters& c = counters_[i];
     c.calls++;
+    c.lps_solved += member.lps_solved() - lps;
+    c.lp_iterations += member.lp_iterations() - iterations;
     c.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (o == Outcome::empty) {
       c.emptied++;
@@ -36,12 +50,7 @@ Outcome Sequence::contract(Box& box) {
 }
 
 void Sequence::add_counters(const Sequence& other) {
-  for (size_t i = 0; i < counters_.size() && i < other.counters_.size(); ++i) {
-    counters_[i].calls += other.counters_[i].calls;
-    counters_[i].emptied += other.counters_[i].emptied;
-    counters_[i].seconds += other.counters_[i].seconds;
-    counters_[i].volume_removed += other.counters_[i].volume_removed;
-  }
+  for (size_t i = 0; i < counters_.size() && i < other.counters_.size(); ++i) counters_[i] += other.counters_[i];
 }
 
 std::unique_ptr<Contractor> Sequence::clone() const {

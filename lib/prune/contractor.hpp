@@ -16,6 +16,10 @@ struct Counters {
   long emptied = 0;
   double seconds = 0;
   double volume_removed = 0;  // sum over calls of (1 - volume ratio) on the split dimensions
+  long lps_solved = 0;        // LP-based contractors: LPs solved (a min or a max each)
+  long lp_iterations = 0;     // and the simplex iterations they took
+
+  Counters& operator+=(const Counters& o);
 };
 
 class Contractor {
@@ -27,6 +31,9 @@ class Contractor {
   // A fresh contractor of the same kind and settings with its own scratch state, for
   // another thread.
   virtual std::unique_ptr<Contractor> clone() const = 0;
+  // Work done so far by an LP-based contractor (0 for the others), for the counters.
+  virtual long lps_solved() const { return 0; }
+  virtual long lp_iterations() const { return 0; }
 };
 
 // Applies its members in order; stops at the first `empty`. Keeps counters per member.

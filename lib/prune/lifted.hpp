@@ -13,6 +13,8 @@ class Lifted final : public Contractor {
   std::string name() const override { return inner_->name(); }
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override;
+  long lps_solved() const override { return inner_->lps_solved(); }
+  long lp_iterations() const override { return inner_->lp_iterations(); }
 
  private:
   model::LphSystem lph_;

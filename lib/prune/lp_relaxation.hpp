@@ -28,7 +28,8 @@ class LpRelaxation final : public Contractor {
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override;
 
-  long lps_solved() const { return lps_solved_; }
+  long lps_solved() const override { return lps_solved_; }
+  long lp_iterations() const override { return solver_->iterations(); }
 
  private:
   LpRelaxation(std::shared_ptr<const model::LphSystem> system, lp::LpBackend backend);

@@ -95,12 +95,7 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
     result.total += s.stats;
     result.complete = result.complete && s.complete;
     if (result.counters.size() < s.counters.size()) result.counters.resize(s.counters.size());
-    for (size_t k = 0; k < s.counters.size(); ++k) {
-      result.counters[k].calls += s.counters[k].calls;
-      result.counters[k].emptied += s.counters[k].emptied;
-      result.counters[k].seconds += s.counters[k].seconds;
-      result.counters[k].volume_removed += s.counters[k].volume_removed;
-    }
+    for (size_t k = 0; k < s.counters.size(); ++k) result.counters[k] += s.counters[k];
   }
   result.contractor_names = options.strategy.contractors;
   result.rigorous = options.strategy.rigorous;

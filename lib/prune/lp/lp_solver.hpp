@@ -37,6 +37,8 @@ class LpSolver {
   virtual void set_column_bounds(int col, double lo, double hi) = 0;
   virtual LpBound minimize(int col) = 0;
   virtual LpBound maximize(int col) = 0;
+  // Simplex iterations over the solver's lifetime (0 where the backend does not say).
+  virtual long iterations() const { return 0; }
 };
 
 std::unique_ptr<LpSolver> make_lp_solver(LpBackend backend);

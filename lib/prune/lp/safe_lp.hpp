@@ -22,8 +22,7 @@ class SafeLp final : public LpSolver {
   LpBound minimize(int col) override;
   LpBound maximize(int col) override;
 
-  // Simplex iterations since load(), to measure warm starting.
-  long iterations() const { return iterations_; }
+  long iterations() const override { return iterations_; }
 
  private:
   LpBound solve(int col, double sense);  // min of sense * x[col], sense = +-1
