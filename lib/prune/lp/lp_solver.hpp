@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace linkbox::prune::lp {
 
@@ -37,6 +38,10 @@ class LpSolver {
   virtual void set_column_bounds(int col, double lo, double hi) = 0;
   virtual LpBound minimize(int col) = 0;
   virtual LpBound maximize(int col) = 0;
+  // The (float) optimal point of the last minimize/maximize, in the loaded LP's columns;
+  // false when the backend has none or that solve did not finish. Only used to skip LPs
+  // (a column already at its bound in a feasible point cannot be tightened there).
+  virtual bool last_point(std::vector<double>& /*x*/) const { return false; }
   // Simplex iterations over the solver's lifetime (0 where the backend does not say).
   virtual long iterations() const { return 0; }
 };

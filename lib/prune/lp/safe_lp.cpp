@@ -108,6 +108,14 @@ void SafeLp::set_column_bounds(int col, double lo, double hi) {
   model_->setColumnBounds(col, to_clp(u_lo), to_clp(u_hi));
 }
 
+bool SafeLp::last_point(std::vector<double>& x) const {
+  if (!model_ || objective_col_ < 0 || model_->status() != 0) return false;
+  const double* u = model_->primalColumnSolution();
+  x.resize(program_.num_cols());
+  for (int j = 0; j < program_.num_cols(); ++j) x[j] = centring_.shift[j] + centring_.scale[j] * u[j];
+  return true;
+}
+
 LpBound SafeLp::minimize(int col) { return solve(col, 1.0); }
 
 LpBound SafeLp::maximize(int col) {

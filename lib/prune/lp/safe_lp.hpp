@@ -22,6 +22,7 @@ class SafeLp final : public LpSolver {
   LpBound minimize(int col) override;
   LpBound maximize(int col) override;
 
+  bool last_point(std::vector<double>& x) const override;
   long iterations() const override { return iterations_; }
 
  private:
