@@ -18,6 +18,9 @@ const char* to_string(ClusterStatus s);
 
 struct CurveCrossing {
   size_t box = 0;  // index into ClusterReport::boxes
+  // The chart the certificate is in: the cluster's, or the member box's own when no single
+  // chart holds the whole cluster (a curve winding around a whole turn).
+  std::uint64_t chart = 0;
   Certificate certificate;
   int dropped_equation = -1;  // square system used: the natural equations but this one
 };
