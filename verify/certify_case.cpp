@@ -5,6 +5,7 @@
 
 #include <Eigen/SVD>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -116,11 +117,16 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
   const bool angles = f.outputs_are_angles();
   std::vector<Box> outputs;
   std::vector<std::pair<size_t, size_t>> where;
-  for (auto& s : result.subproblems)
+  std::vector<double> residual;
+  for (auto& s : result.subproblems) {
+    if (s.solutions.empty()) continue;
+    const auto equations = f.subproblem(s.index).system.equations;
     for (size_t k = 0; k < s.solutions.size(); ++k) {
       outputs.push_back(f.to_output(s.index, s.solutions[k]));
       where.emplace_back(s.index, k);
+      residual.push_back(model::residual_bound(equations, s.solutions[k]));
     }
+  }
   const std::vector<bool> periodic(f.output_names().size(), angles);
   const auto groups = cluster_boxes(outputs, periodic);
 
@@ -133,6 +139,7 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     for (int i : g) {
       c.boxes.push_back(where[i]);
       member.push_back(unwrap(outputs[i], outputs[g[0]], angles));
+      c.max_residual = std::max(c.max_residual, residual[i]);
     }
     c.hull = member[0];
     for (auto& b : member) c.hull = hull(c.hull, b);
@@ -154,6 +161,8 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
         c.status = ClusterStatus::certified;
         c.root = f.natural_to_output(c.chart, c.certificate.box);
         c.outputs = f.natural_outputs(c.chart, c.certificate.box);
+        for (auto& b : member) c.distances.push_back(farthest_distance(b, c.root, periodic));
+        c.max_distance = *std::max_element(c.distances.begin(), c.distances.end());
         if (!c.certificate.unique_in_hull) c.reason = "root certified; its cluster hull not proved free of other roots";
       } else if (c.certificate.reason == Reason::no_root) {
         c.status = ClusterStatus::empty;

@@ -66,7 +66,7 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
   json clusters = json::array();
   for (auto& c : r.clusters) {
     json cj = {{"status", verify::to_string(c.status)}, {"boxes", c.boxes.size()}, {"hull", box_json(c.hull)},
-               {"chart", c.chart}};
+               {"chart", c.chart}, {"max_residual", c.max_residual}};
     if (!c.reason.empty()) cj["reason"] = c.reason;
     json members = json::array();
     for (auto [s, k] : c.boxes) members.push_back({s, k});
@@ -80,6 +80,8 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
         cj[m.name] = rows;
       }
       if (c.duplicate_of >= 0) cj["duplicate_of"] = c.duplicate_of;
+      cj["distances"] = c.distances;
+      cj["max_distance"] = c.max_distance;
     }
     if (c.status != verify::ClusterStatus::curve) cj["certificate"] = certificate_json(c.certificate);
     if (c.status == verify::ClusterStatus::curve) {
