@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <unistd.h>
@@ -36,6 +37,27 @@ nlohmann::json read(const std::string& file) {
 
 void write(const std::string& file, const nlohmann::json& j) { std::ofstream(file) << j.dump(); }
 
+// Solves a bundled case into `out`, requires `linkbox check` to accept it, returns the JSON.
+nlohmann::json solved_and_checked(const std::string& case_path, const std::string& options, const std::string& out) {
+  REQUIRE(run("solve " + src(case_path) + " --quiet " + options + " --json " + out) == 0);
+  REQUIRE(run("check " + out) == 0);
+  return read(out);
+}
+
+// Index of the first entry of `list` with this status; list.size() when there is none.
+size_t first_with_status(const nlohmann::json& list, const std::string& status) {
+  size_t i = 0;
+  while (i < list.size() && list[i]["status"] != status) ++i;
+  return i;
+}
+
+void shift_box(nlohmann::json& box, double by) {
+  for (auto& side : box) {
+    side[0] = side[0].get<double>() + by;
+    side[1] = side[1].get<double>() + by;
+  }
+}
+
 }  // namespace
 
 TEST_CASE("solve writes the documented JSON and check accepts it", "[cli]") {
@@ -52,19 +74,14 @@ TEST_CASE("solve writes the documented JSON and check accepts it", "[cli]") {
 }
 
 TEST_CASE("check fails on tampered certificates", "[cli]") {
-  const std::string out = tmp("cli-agile.json"), bad = tmp("cli-tampered.json");
-  REQUIRE(run("solve " + src("cases/spherical/agile-eye.toml") + " --quiet --json " + out) == 0);
-  const auto j = read(out);
-  REQUIRE(run("check " + out) == 0);
-  size_t first = 0;
-  while (j["clusters"][first]["status"] != "certified") ++first;
+  const std::string bad = tmp("cli-tampered.json");
+  const auto j = solved_and_checked("cases/spherical/agile-eye.toml", "", tmp("cli-agile.json"));
+  const size_t first = first_with_status(j["clusters"], "certified");
+  REQUIRE(first < j["clusters"].size());
 
   SECTION("a certified box shifted") {
     auto t = j;
-    for (auto& side : t["clusters"][first]["certificate"]["box"]) {
-      side[0] = side[0].get<double>() + 1e-3;
-      side[1] = side[1].get<double>() + 1e-3;
-    }
+    shift_box(t["clusters"][first]["certificate"]["box"], 1e-3);
     write(bad, t);
     CHECK(run("check " + bad) == 1);
   }
@@ -96,6 +113,41 @@ TEST_CASE("check fails on tampered certificates", "[cli]") {
     write(bad, t);
     CHECK(run("check " + bad) == 1);
   }
+}
+
+TEST_CASE("check re-runs gimbal-lock curve crossings and fails on a tampered one", "[cli]") {
+  // The curve winds around a whole turn: each crossing is certified in its own chart.
+  const std::string bad = tmp("cli-gimbal-tampered.json");
+  const auto j = solved_and_checked("cases/hard/gimbal-lock.toml", "--sigma 1e-2", tmp("cli-gimbal.json"));
+  const size_t curve = first_with_status(j["clusters"], "curve");
+  REQUIRE(curve < j["clusters"].size());
+  const auto& crossings = j["clusters"][curve]["crossings"];
+  const size_t first = first_with_status(crossings, "certified");
+  REQUIRE(first < crossings.size());
+  auto t = j;
+  auto& x = t["clusters"][curve]["crossings"][first];
+
+  SECTION("a crossing box shifted") { shift_box(x["box"], 1e-3); }
+  SECTION("a crossing moved to another chart") { x["chart"] = x["chart"].get<std::uint64_t>() ^ 1; }
+  SECTION("a crossing listed for a member box across the circle") {
+    // phi1 at the centre of each member's box (solutions are listed by sub-problem, then index).
+    const auto& members = j["clusters"][curve]["members"];
+    auto phi1 = [&](size_t m) {
+      size_t i = 0;
+      while (j["solutions"][i]["subproblem"] != members[m][0]) ++i;
+      const auto& side = j["solutions"][i + members[m][1].get<size_t>()]["box"][0];
+      return 0.5 * (side[0].get<double>() + side[1].get<double>());
+    };
+    const double here = phi1(x["member"].get<size_t>());
+    size_t across = 0;
+    for (size_t m = 0; m < members.size(); ++m)
+      if (std::fabs(std::remainder(phi1(m) - here, 2 * M_PI)) > std::fabs(std::remainder(phi1(across) - here, 2 * M_PI)))
+        across = m;
+    REQUIRE(std::fabs(std::remainder(phi1(across) - here, 2 * M_PI)) > 1);
+    x["member"] = across;
+  }
+  write(bad, t);
+  CHECK(run("check " + bad) == 1);
 }
 
 TEST_CASE("bad input exits with code 2", "[cli]") {

@@ -2,8 +2,9 @@
 // in the verified mode through the library, plus the strategy comparison script in --quick
 // mode. What is checked is what the library may claim: an exact headline only when it is
 // true, known roots always enclosed, singular or positive-dimensional solution sets never
-// reported as certified isolated roots. The test tagged [!mayfail] pins down a known library
-// defect (see papers/compare/hard_cases.md): it reports but does not fail the run.
+// reported as certified isolated roots. Known library defects, when there are any, are pinned
+// by tests tagged [!mayfail] (see papers/compare/hard_cases.md): they report but do not fail
+// the run.
 #include "io/case_file.hpp"
 #include "prune/strategy.hpp"
 #include "solve/solve_case.hpp"
@@ -15,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -285,13 +287,32 @@ TEST_CASE("hard: gimbal lock is covered by boxes and never claimed as isolated r
   }
 }
 
-TEST_CASE("hard: gimbal lock is reported as a curve cluster", "[hard][!mayfail]") {
-  // Known defect: the cluster wraps the whole circle, so no half-angle chart holds it
-  // ("cluster too wide for a chart") and it stays "unverified" instead of "curve".
+TEST_CASE("hard: gimbal lock is reported as a curve cluster", "[hard]") {
+  // The cluster wraps the whole circle, so no single half-angle chart holds it: each box is
+  // analysed, and its crossing certified, in its own chart.
   Run s = run_case("cases/hard/gimbal-lock.toml", "trapezoid", 1e-2);
   INFO(s.v.headline);
   CHECK(s.v.curves >= 1);
   CHECK(s.v.unverified == 0);
+  std::set<std::uint64_t> charts;
+  for (auto& c : s.v.clusters) {
+    if (c.status != verify::ClusterStatus::curve) continue;
+    CHECK(2 * static_cast<size_t>(c.crossings_certified) >= c.crossings.size());
+    for (auto& x : c.crossings) {
+      if (x.certificate.status != verify::Status::certified) continue;
+      charts.insert(x.chart);
+      // Re-checks in its own chart, and is a point of the circle phi2 = 0, phi1 + phi3 = 0.7.
+      auto eqs = s.c.formulation->natural_system(x.chart).equations;
+      REQUIRE(x.dropped_equation >= 0);
+      eqs.erase(eqs.begin() + x.dropped_equation);
+      CHECK(verify::recheck(eqs, x.certificate));
+      const Box point = s.c.formulation->natural_to_output(x.chart, x.certificate.box);
+      CHECK(max_width(point) < 1e-9);
+      const double phi1 = median(point[0]);
+      CHECK(distance(point, {phi1, 0, 0.7 - phi1}, true) < 1e-9);
+    }
+  }
+  CHECK(charts.size() >= 2);
 }
 
 TEST_CASE("hard: the float variant never states an exact count", "[hard]") {

@@ -5,6 +5,7 @@
 
 #include <Eigen/SVD>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -73,26 +74,29 @@ int dependent_equation(const std::vector<model::Polynomial>& f, const Box& x) {
   return best;
 }
 
-void certify_curve(const formulate::Formulation& f, const std::vector<Box>& outputs, ClusterReport& c,
+// Certifies member by member that a solution curve crosses it: in the member's chart, with
+// one equation dropped where the Jacobian is rank deficient, the unknown that varies most
+// fixed at the middle of the box.
+void certify_curve(const formulate::Formulation& f, formulate::NaturalSystems& systems,
+                   const std::vector<Box>& members, const std::vector<std::uint64_t>& charts, ClusterReport& c,
                    const NewtonOptions& options) {
-  const auto sys = f.natural_system(c.chart);
-  const size_t n = sys.unknowns.size();
   for (size_t k = 0; k < c.boxes.size(); ++k) {
     CurveCrossing x;
     x.box = k;
+    x.chart = charts[k];
+    const auto& sys = systems(x.chart);
     Box natural;
     try {
-      natural = f.output_to_natural(c.chart, unwrap(outputs[k], c.hull, f.outputs_are_angles()));
+      natural = f.output_to_natural(x.chart, members[k]);
     } catch (const std::exception&) {
       c.crossings.push_back(x);
       continue;
     }
     std::vector<model::Polynomial> eqs = sys.equations;
-    if (eqs.size() == n) {
+    if (eqs.size() == sys.unknowns.size()) {
       x.dropped_equation = dependent_equation(eqs, natural);
       eqs.erase(eqs.begin() + x.dropped_equation);
     }
-    // Fix the variable that varies most across the box (the curve's direction there).
     x.certificate = certify_curve_crossing(eqs, natural, widest_dimension(natural), options);
     // A crossing of the square subsystem is a point of the solution set only where the
     // dropped equation vanishes too; near an ill-conditioned isolated root it does not.
@@ -113,14 +117,20 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
   const bool angles = f.outputs_are_angles();
   std::vector<Box> outputs;
   std::vector<std::pair<size_t, size_t>> where;
-  for (auto& s : result.subproblems)
+  std::vector<double> residual;
+  for (auto& s : result.subproblems) {
+    if (s.solutions.empty()) continue;
+    const auto equations = f.subproblem(s.index).system.equations;
     for (size_t k = 0; k < s.solutions.size(); ++k) {
       outputs.push_back(f.to_output(s.index, s.solutions[k]));
       where.emplace_back(s.index, k);
+      residual.push_back(model::residual_bound(equations, s.solutions[k]));
     }
+  }
   const std::vector<bool> periodic(f.output_names().size(), angles);
   const auto groups = cluster_boxes(outputs, periodic);
 
+  formulate::NaturalSystems systems(f);
   std::vector<Box> roots;        // certified root boxes (output variables), for merging
   std::vector<size_t> root_of;   // cluster index of each
   for (auto& g : groups) {
@@ -129,11 +139,12 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     for (int i : g) {
       c.boxes.push_back(where[i]);
       member.push_back(unwrap(outputs[i], outputs[g[0]], angles));
+      c.max_residual = std::max(c.max_residual, residual[i]);
     }
     c.hull = member[0];
     for (auto& b : member) c.hull = hull(c.hull, b);
     c.chart = f.chart_for(c.hull);
-    const auto sys = f.natural_system(c.chart);
+    const auto& sys = systems(c.chart);
     const size_t n = sys.unknowns.size();
     Box start;
     try {
@@ -150,6 +161,8 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
         c.status = ClusterStatus::certified;
         c.root = f.natural_to_output(c.chart, c.certificate.box);
         c.outputs = f.natural_outputs(c.chart, c.certificate.box);
+        for (auto& b : member) c.distances.push_back(farthest_distance(b, c.root, periodic));
+        c.max_distance = *std::max_element(c.distances.begin(), c.distances.end());
         if (!c.certificate.unique_in_hull) c.reason = "root certified; its cluster hull not proved free of other roots";
       } else if (c.certificate.reason == Reason::no_root) {
         c.status = ClusterStatus::empty;
@@ -170,23 +183,30 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     // precision (a root's enclosure stretches by eps / sigma_min): such clusters stay
     // unverified rather than be called curves.
     const bool long_cluster = c.boxes.size() >= 4 && max_width(c.hull) > 2 * box_width && max_width(c.hull) > 1e-6;
+    // Members are analysed in the cluster's chart when it holds the whole cluster, else
+    // each in its own: a curve that winds around a whole turn (gimbal lock) fits no single
+    // chart of half-angle tangents, but every small box does.
+    std::vector<std::uint64_t> charts(member.size(), c.chart);
+    if (start.empty())
+      for (size_t k = 0; k < member.size(); ++k) charts[k] = f.chart_for(member[k]);
     bool rank_deficient = sys.equations.size() + 1 == n;
     for (size_t k = 0; square && !rank_deficient && k < member.size(); k += std::max<size_t>(1, member.size() / 5)) {
       try {
-        rank_deficient = rank_deficient_near(sys.equations, f.output_to_natural(c.chart, member[k]));
+        rank_deficient = rank_deficient_near(systems(charts[k]).equations, f.output_to_natural(charts[k], member[k]));
       } catch (const std::exception&) {
       }
     }
-    if (c.status == ClusterStatus::unverified && long_cluster && !start.empty() && rank_deficient) {
+    if (c.status == ClusterStatus::unverified && long_cluster && rank_deficient) {
       // Called a curve only when a solution curve of the subsystem, on which the dropped
       // equation vanishes, crosses at least half of its boxes; a singular isolated root (a
       // double root, an ill-conditioned one) does not, and stays unverified.
       ClusterReport curve = c;
-      certify_curve(f, member, curve, options.newton);
+      certify_curve(f, systems, member, charts, curve, options.newton);
       if (2 * static_cast<size_t>(curve.crossings_certified) >= curve.boxes.size()) {
         c = std::move(curve);
         c.status = ClusterStatus::curve;
-        c.reason = "positive-dimensional: boxes follow a curve";
+        c.reason = start.empty() ? "positive-dimensional: boxes follow a curve around a whole turn (each box in its own chart)"
+                                 : "positive-dimensional: boxes follow a curve";
       }
     }
     if (c.status == ClusterStatus::certified) {
@@ -205,7 +225,7 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     ClusterReport& first = report.clusters[root_of[g[0]]];
     for (size_t k = 1; k < g.size(); ++k) {
       ClusterReport& other = report.clusters[root_of[g[k]]];
-      const auto sys = f.natural_system(first.chart);
+      const auto& sys = systems(first.chart);
       Box joint = first.certificate.box;
       try {
         joint = hull(joint, f.output_to_natural(first.chart, unwrap(other.root, first.root, angles)));

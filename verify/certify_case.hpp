@@ -18,6 +18,9 @@ const char* to_string(ClusterStatus s);
 
 struct CurveCrossing {
   size_t box = 0;  // index into ClusterReport::boxes
+  // The chart the certificate is in: the cluster's, or the member box's own when no single
+  // chart holds the whole cluster (a curve winding around a whole turn).
+  std::uint64_t chart = 0;
   Certificate certificate;
   int dropped_equation = -1;  // square system used: the natural equations but this one
 };
@@ -34,6 +37,13 @@ struct ClusterReport {
   std::vector<CurveCrossing> crossings;         // curve clusters
   int crossings_certified = 0;
   int duplicate_of = -1;  // certified, but the same root as that cluster's
+  // Upper bounds: the largest rigorous residual max_i |f_i(midpoint)| of a member box in its
+  // sub-problem's system; for a certified cluster, per member (same order as `boxes`) the
+  // farthest distance (max norm, output variables, angles modulo 2 pi) from a point of the
+  // member to a point of `root`, and the largest of those.
+  double max_residual = 0;
+  std::vector<double> distances;
+  double max_distance = 0;
 };
 
 struct VerifyOptions {

@@ -128,6 +128,20 @@ bool boxes_touch(const Box& a, const Box& b, const std::vector<bool>& periodic) 
   return true;
 }
 
+double farthest_distance(const Box& a, const Box& b, const std::vector<bool>& periodic) {
+  if (a.size() != b.size()) throw std::invalid_argument("farthest_distance: boxes of different dimension");
+  double d = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    Interval bi = b[i];
+    if (is_periodic(periodic, i)) {
+      const double turns = std::nearbyint((centre(a[i]) - centre(b[i])) / (2 * M_PI));
+      if (turns != 0) bi += two_pi() * Interval(turns);
+    }
+    d = std::max(d, norm(a[i] - bi));  // sup |x - y| over x in a[i], y in bi, rounded up
+  }
+  return d;
+}
+
 std::vector<std::vector<int>> cluster_boxes(const std::vector<Box>& boxes,
                                             const std::vector<bool>& periodic) {
   const int n = static_cast<int>(boxes.size());

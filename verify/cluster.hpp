@@ -18,6 +18,12 @@ Interval two_pi();
 // boxes apart is not). Boxes with a NaN bound touch nothing.
 bool boxes_touch(const Box& a, const Box& b, const std::vector<bool>& periodic = {});
 
+// Upper bound on the largest max-norm distance from a point of `a` to a point of `b`
+// (outward rounded). In a periodic dimension `b` is first shifted by the whole turns that
+// bring its centre nearest `a`'s, an exact translation; the distance modulo 2*pi is at most
+// the distance to that copy.
+double farthest_distance(const Box& a, const Box& b, const std::vector<bool>& periodic = {});
+
 // Connected components of boxes_touch over `boxes` (all of one dimension; throws
 // std::invalid_argument otherwise). Each cluster lists box indices ascending; clusters are
 // ordered by their smallest index.

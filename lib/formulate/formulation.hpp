@@ -5,6 +5,7 @@
 #include "model/polynomial.hpp"
 
 #include <cstdint>
+#include <map>
 #include <memory>
 
 #include <string>
@@ -60,6 +61,22 @@ class Formulation {
   virtual Box output_to_natural(std::uint64_t, const Box& output) const { return output; }
   virtual Box natural_to_output(std::uint64_t, const Box& natural) const { return natural; }
   virtual std::vector<MatrixOutput> natural_outputs(std::uint64_t, const Box&) const { return {}; }
+};
+
+// Natural systems by chart, each built once: a curve that winds around a whole turn is
+// analysed box by box, each in its own chart, and many boxes share a chart.
+class NaturalSystems {
+ public:
+  explicit NaturalSystems(const Formulation& formulation) : formulation_(formulation) {}
+  const NaturalSystem& operator()(std::uint64_t chart) {
+    auto it = built_.find(chart);
+    if (it == built_.end()) it = built_.emplace(chart, formulation_.natural_system(chart)).first;
+    return it->second;
+  }
+
+ private:
+  const Formulation& formulation_;
+  std::map<std::uint64_t, NaturalSystem> built_;
 };
 
 // A polynomial system as typed by a user: one sub-problem, outputs are its variables.

@@ -68,6 +68,9 @@ json result_json(const std::string& case_name, const std::string& case_file,
   j["contractors"] = contractors;
   json subs = json::array(), sols = json::array();
   for (auto& s : result.subproblems) {
+    // The sub-problem's equations, for the residual of its solution boxes.
+    const auto equations = s.solutions.empty() ? std::vector<model::Polynomial>{}
+                                               : formulation.subproblem(s.index).system.equations;
     json sj = stats_json(s.stats);
     sj["index"] = s.index;
     sj["label"] = s.label;
@@ -78,7 +81,8 @@ json result_json(const std::string& case_name, const std::string& case_file,
     for (auto& box : s.solutions) {
       json sol = {{"subproblem", s.index},
                   {"box", box_json(formulation.to_output(s.index, box))},
-                  {"search_box", box_json(box)}};
+                  {"search_box", box_json(box)},
+                  {"residual", model::residual_bound(equations, box)}};
       for (auto& m : formulation.declared_outputs(s.index, box)) {
         json rows = json::array();
         for (auto& row : m.rows) rows.push_back(box_json(row));

@@ -66,7 +66,7 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
   json clusters = json::array();
   for (auto& c : r.clusters) {
     json cj = {{"status", verify::to_string(c.status)}, {"boxes", c.boxes.size()}, {"hull", box_json(c.hull)},
-               {"chart", c.chart}};
+               {"chart", c.chart}, {"max_residual", c.max_residual}};
     if (!c.reason.empty()) cj["reason"] = c.reason;
     json members = json::array();
     for (auto [s, k] : c.boxes) members.push_back({s, k});
@@ -80,6 +80,8 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
         cj[m.name] = rows;
       }
       if (c.duplicate_of >= 0) cj["duplicate_of"] = c.duplicate_of;
+      cj["distances"] = c.distances;
+      cj["max_distance"] = c.max_distance;
     }
     if (c.status != verify::ClusterStatus::curve) cj["certificate"] = certificate_json(c.certificate);
     if (c.status == verify::ClusterStatus::curve) {
@@ -87,6 +89,7 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
       for (auto& x : c.crossings) {
         json xj = certificate_json(x.certificate);
         xj["member"] = x.box;
+        xj["chart"] = x.chart;
         xj["dropped_equation"] = x.dropped_equation;
         xs.push_back(xj);
       }
@@ -125,13 +128,15 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
     solutions[{sub, seen[sub]++}] = box_from(s.at("box"));
   }
   int certified = 0;
+  formulate::NaturalSystems systems(f);
+  const std::vector<bool> periodic(f.output_names().size(), f.outputs_are_angles());
   const auto& clusters = j.at("clusters");
   for (size_t i = 0; i < clusters.size(); ++i) {
     const json& c = clusters[i];
     const std::string where = "cluster " + std::to_string(i);
     const std::string status = c.at("status");
     const auto chart = c.at("chart").get<std::uint64_t>();
-    const auto sys = f.natural_system(chart);
+    const auto& sys = systems(chart);
     const Box hull = box_from(c.at("hull"));
     for (auto& m : c.at("members")) {
       auto it = solutions.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
@@ -165,15 +170,26 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
       for (auto& x : c.at("crossings")) {
         if (x.at("status") != "certified") continue;
         ++out.checked;
-        auto eqs = sys.equations;
+        // Each crossing in its own chart: a curve around a whole turn fits no single one.
+        const std::uint64_t crossing_chart = x.value("chart", chart);
+        const auto& full = systems(crossing_chart).equations;
+        auto eqs = full;
         const int dropped = x.at("dropped_equation");
-        if (dropped >= 0 && dropped < static_cast<int>(eqs.size())) eqs.erase(eqs.begin() + dropped);
+        const bool drops = dropped >= 0 && dropped < static_cast<int>(eqs.size());
+        if (drops) eqs.erase(eqs.begin() + dropped);
         const verify::Certificate cert = certificate_from(x);
-        if (!verify::recheck(eqs, cert))
+        if (!verify::recheck(eqs, cert)) {
           out.failures.push_back(where + ": a curve-crossing certificate does not hold");
-        else if (dropped >= 0 && dropped < static_cast<int>(sys.equations.size()) &&
-                 !zero_in(sys.equations[dropped].eval(cert.box)))
+          continue;
+        }
+        if (drops && !zero_in(full[dropped].eval(cert.box)))
           out.failures.push_back(where + ": the dropped equation does not vanish on a crossing box");
+        // The crossing must be in the member box it is listed for.
+        const auto& m = c.at("members").at(x.at("member").get<size_t>());
+        auto it = solutions.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
+        if (it == solutions.end() ||
+            !verify::boxes_touch(f.natural_to_output(crossing_chart, cert.box), it->second, periodic))
+          out.failures.push_back(where + ": a curve crossing lies outside its member box");
       }
     }
   }

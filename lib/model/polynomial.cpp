@@ -1,5 +1,6 @@
 #include "model/polynomial.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace linkbox::model {
@@ -97,6 +98,14 @@ Interval Polynomial::eval(const Box& box) const {
     s += t;
   }
   return s;
+}
+
+double residual_bound(const std::vector<Polynomial>& f, const Box& box) {
+  Box mid(box.size());
+  for (size_t i = 0; i < box.size(); ++i) mid[i] = Interval(median(box[i]));
+  double r = 0;
+  for (auto& p : f) r = std::max(r, norm(p.eval(mid)));  // norm: the larger |bound|
+  return r;
 }
 
 Polynomial Polynomial::derivative(int index) const {

@@ -48,6 +48,11 @@ class Polynomial {
   std::map<Powers, Interval> terms_;
 };
 
+// Rigorous residual at the box's midpoint m (each coordinate the double nearest the centre
+// of its side, a point of the box): an upper bound on max_i |f_i(m)| from the
+// outward-rounded interval value of each f_i at m. 0 when there are no equations.
+double residual_bound(const std::vector<Polynomial>& f, const Box& box);
+
 struct Variable {
   std::string name;
   Interval domain;
