@@ -65,7 +65,11 @@ std::vector<double> elastic_duals(const LinearProgram& lp) {
 
 }  // namespace
 
-bool SafeLp::elastic_certificate() const { return proves_infeasible(program_, elastic_duals(centred_)); }
+bool SafeLp::elastic_certificate() const {
+  std::vector<double> y = elastic_duals(centred_);
+  to_original_rows(centring_, y);
+  return proves_infeasible(program_, y);
+}
 
 SafeLp::SafeLp(bool trust_float) : trust_float_(trust_float) {}
 SafeLp::~SafeLp() = default;
@@ -92,9 +96,9 @@ void SafeLp::load(const LinearProgram& program) {
   model_->setSpecialOptions(model_->specialOptions() | 32 | 2097152);
   model_->loadProblem(matrix, col_lo.data(), col_hi.data(), objective.data(), row_lo.data(), row_hi.data());
   cap_effort(*model_);
-  // No CLP scaling: the columns are already centred on [-1, 1], and with its default
-  // scaling CLP called two thirds of the (feasible, as the exact LP showed) relaxations on
-  // bicyclohexane primal infeasible, which cost all their pruning.
+  // No CLP scaling (centred_program.hpp scales rows and columns): with it, CLP called two
+  // thirds of the (feasible, as the exact LP showed) relaxations on bicyclohexane primal
+  // infeasible, which cost all their pruning.
   model_->scaling(0);
   objective_col_ = -1;
 }
@@ -155,6 +159,7 @@ LpBound SafeLp::solve(int col, double sense) {
     std::unique_ptr<double[]> ray(model_->infeasibilityRay());
     if (ray) {
       std::vector<double> y(ray.get(), ray.get() + m);
+      to_original_rows(centring_, y);
       if (proves_infeasible(program_, y)) return infeasible;
       for (double& v : y) v = -v;
       if (proves_infeasible(program_, y)) return infeasible;
@@ -169,6 +174,7 @@ LpBound SafeLp::solve(int col, double sense) {
   // tolerances); its duals are those of objective sense * x once multiplied by scale.
   std::vector<double> y(model_->dualRowSolution(), model_->dualRowSolution() + m);
   for (double& v : y) v *= centring_.scale[col];
+  to_original_rows(centring_, y);
   double bound = dual_lower_bound(program_, y, objective);
   // A lower bound on sense*x above its largest value in X proves the LP empty.
   if (bound > other_end) return infeasible;
