@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <map>
 
 namespace linkbox::io {
@@ -81,13 +82,17 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
       }
       if (c.duplicate_of >= 0) cj["duplicate_of"] = c.duplicate_of;
     }
-    if (c.status != verify::ClusterStatus::curve) cj["certificate"] = certificate_json(c.certificate);
+    if (c.status != verify::ClusterStatus::curve) {
+      cj["certificate"] = certificate_json(c.certificate);
+      if (!c.subsystem.empty()) cj["subsystem"] = c.subsystem;
+      if (c.excluding_equation >= 0) cj["excluding_equation"] = c.excluding_equation;
+    }
     if (c.status == verify::ClusterStatus::curve) {
       json xs = json::array();
       for (auto& x : c.crossings) {
         json xj = certificate_json(x.certificate);
         xj["member"] = x.box;
-        xj["dropped_equation"] = x.dropped_equation;
+        xj["dropped_equations"] = x.dropped_equations;
         xs.push_back(xj);
       }
       cj["crossings"] = xs;
@@ -100,6 +105,23 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
 }
 
 namespace {
+// The natural equations a certificate speaks of: those listed under `key`, or all of them.
+// Returns false when an index is out of range.
+bool equations_named(const json& c, const char* key, const std::vector<model::Polynomial>& all,
+                     std::vector<model::Polynomial>& out) {
+  if (!c.contains(key)) {
+    out = all;
+    return true;
+  }
+  out.clear();
+  for (auto& r : c.at(key)) {
+    const int i = r.get<int>();
+    if (i < 0 || i >= static_cast<int>(all.size())) return false;
+    out.push_back(all[i]);
+  }
+  return true;
+}
+
 // Whether `hull` covers `b`, angle sides modulo whole turns.
 bool covers(const Box& hull, const Box& b, bool angles) {
   if (hull.size() != b.size()) return false;
@@ -157,23 +179,52 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
       ++out.checked;
       const json& cj = c.at("certificate");
       verify::Certificate cert = certificate_from(cj);
-      if (!verify::recheck_exclusion(sys.equations, cert.box, cert.preconditioner, cert.method))
+      std::vector<model::Polynomial> eqs;
+      bool holds = equations_named(c, "subsystem", sys.equations, eqs);
+      if (holds && c.contains("excluding_equation")) {
+        // Proved by evaluation: that equation's range over the box misses 0.
+        const int k = c.at("excluding_equation");
+        holds = k >= 0 && k < static_cast<int>(sys.equations.size()) && !zero_in(sys.equations[k].eval(cert.box));
+      } else if (holds) {
+        holds = verify::recheck_exclusion(eqs, cert.box, cert.preconditioner, cert.method);
+      }
+      if (!holds)
         out.failures.push_back(where + ": the proof that this cluster holds no root does not hold");
       else if (!contains(cert.box, f.output_to_natural(chart, box_from(c.at("hull")))))
         out.failures.push_back(where + ": the box proved empty does not cover the cluster");
+    } else if (status == "unverified" && c.contains("subsystem") && c.at("certificate").at("status") == "certified") {
+      // An overdetermined system's square subsystem: its unique root is what the reason
+      // speaks of, and the other equations contain 0 on its box.
+      ++out.checked;
+      std::vector<model::Polynomial> eqs;
+      const verify::Certificate cert = certificate_from(c.at("certificate"));
+      if (!equations_named(c, "subsystem", sys.equations, eqs) || !verify::recheck(eqs, cert)) {
+        out.failures.push_back(where + ": the certificate of its square subsystem does not hold");
+        continue;
+      }
+      for (size_t k = 0; k < sys.equations.size(); ++k)
+        if (!zero_in(sys.equations[k].eval(cert.box))) {
+          out.failures.push_back(where + ": natural equation " + std::to_string(k) + " misses 0 on the subsystem's box");
+          break;
+        }
     } else if (status == "curve") {
       for (auto& x : c.at("crossings")) {
         if (x.at("status") != "certified") continue;
         ++out.checked;
-        auto eqs = sys.equations;
-        const int dropped = x.at("dropped_equation");
-        if (dropped >= 0 && dropped < static_cast<int>(eqs.size())) eqs.erase(eqs.begin() + dropped);
+        std::vector<model::Polynomial> eqs, dropped;
+        std::vector<bool> kept(sys.equations.size(), true);
+        bool indices_ok = true;
+        for (auto& d : x.at("dropped_equations")) {
+          const int k = d.get<int>();
+          indices_ok = indices_ok && k >= 0 && k < static_cast<int>(kept.size());
+          if (indices_ok) kept[k] = false;
+        }
+        for (size_t k = 0; k < kept.size(); ++k) (kept[k] ? eqs : dropped).push_back(sys.equations[k]);
         const verify::Certificate cert = certificate_from(x);
-        if (!verify::recheck(eqs, cert))
+        if (!indices_ok || !verify::recheck(eqs, cert))
           out.failures.push_back(where + ": a curve-crossing certificate does not hold");
-        else if (dropped >= 0 && dropped < static_cast<int>(sys.equations.size()) &&
-                 !zero_in(sys.equations[dropped].eval(cert.box)))
-          out.failures.push_back(where + ": the dropped equation does not vanish on a crossing box");
+        else if (std::any_of(dropped.begin(), dropped.end(), [&](auto& p) { return !zero_in(p.eval(cert.box)); }))
+          out.failures.push_back(where + ": a dropped equation does not vanish on a crossing box");
       }
     }
   }
