@@ -303,8 +303,8 @@ TEST_CASE("hard: gimbal lock is reported as a curve cluster", "[hard]") {
       charts.insert(x.chart);
       // Re-checks in its own chart, and is a point of the circle phi2 = 0, phi1 + phi3 = 0.7.
       auto eqs = s.c.formulation->natural_system(x.chart).equations;
-      REQUIRE(x.dropped_equation >= 0);
-      eqs.erase(eqs.begin() + x.dropped_equation);
+      REQUIRE(x.dropped_equations.size() == 1);
+      eqs.erase(eqs.begin() + x.dropped_equations[0]);
       CHECK(verify::recheck(eqs, x.certificate));
       const Box point = s.c.formulation->natural_to_output(x.chart, x.certificate.box);
       CHECK(max_width(point) < 1e-9);

@@ -1,14 +1,21 @@
-// The linkage vector model (iterated-LP paper, Section II) against configurations built
-// independently: random closed loops from random joint axes (DH parameters measured from the
-// geometry, cross-checked by DH forward kinematics), the cyclohexane chair, the bundled cases
-// and the malformed files of tests/data/bad_linkage.
+// The linkage vector model (iterated-LP paper, Section II) and the natural system that
+// certification solves, against configurations built independently: random closed loops
+// from random joint axes (DH parameters measured from the geometry, cross-checked by DH
+// forward kinematics), the cyclohexane chair, bicyclohexane's chair-chair poses, the planted
+// pose of two rings, the bundled cases and the malformed files of tests/data/bad_linkage.
 #include "formulate/linkage.hpp"
 #include "formulate/to_lph.hpp"
 #include "interval/rigorous.hpp"
 #include "io/linkage_file.hpp"
+#include "io/result_json.hpp"
 #include "io/toml_reader.hpp"
+#include "io/verify_json.hpp"
+#include "solve/solve_case.hpp"
+#include "tests/box_file.hpp"
+#include "verify/certify_case.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +25,7 @@
 #include <map>
 #include <numeric>
 #include <random>
+#include <sstream>
 
 using namespace linkbox;
 using namespace linkbox::formulate;
@@ -255,6 +263,57 @@ formulate::LinkageCase load_file(const std::string& path) {
 
 std::string case_path(const std::string& name) { return std::string(LINKBOX_SOURCE_DIR) + "/cases/linkages/" + name; }
 
+// The natural system (what certification solves) holds at a configuration given by its
+// outputs: every equation's range over the natural box of `out` contains 0, and the box
+// maps back onto the outputs. Moving one angle by 0.01 breaks some equation (not vacuous).
+void check_natural_system_holds(const LinkageFormulation& f, const Box& out) {
+  const std::uint64_t chart = f.chart_for(out);
+  const NaturalSystem s = f.natural_system(chart);
+  REQUIRE(s.unknowns.size() == out.size());
+  const Box natural = f.output_to_natural(chart, out);
+  for (size_t k = 0; k < s.equations.size(); ++k) {
+    INFO("natural equation " << k);
+    CHECK(zero_in(s.equations[k].eval(natural)));
+  }
+  const Box back = f.natural_to_output(chart, natural);
+  for (size_t i = 0; i < out.size(); ++i) CHECK((angle_in(back[i], median(out[i])) || contains(back[i], median(out[i]))));
+  const std::vector<std::string> names = f.output_names();
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (s.unknowns[i] != "t_" + names[i]) continue;  // an offset
+    Box moved = out;
+    moved[i] += Interval(0.01);
+    const Box far = f.output_to_natural(chart, moved);
+    bool broken = false;
+    for (auto& p : s.equations) broken = broken || !zero_in(p.eval(far));
+    INFO("output " << names[i] << " moved by 0.01");
+    CHECK(broken);
+    break;
+  }
+}
+
+// Axes and normals of `loop` at the angles theta, by DH forward kinematics from `start`, the
+// frame of the link before its first entry (in the ground frame); the loop must close when
+// `closes`.
+std::vector<Entry> place_loop(const LinkageLoop& loop, const std::vector<double>& theta, const Frame& start,
+                              bool closes = true) {
+  std::vector<Entry> e(loop.links.size());
+  Frame fr = start;
+  for (size_t i = 0; i < e.size(); ++i) {
+    const LoopLink& l = loop.links[i];
+    e[i].joint = l.joint;
+    e[i].link = l.link;
+    e[i].theta = theta[i];
+    e[i].d = median(l.d);
+    e[i].axis = column(fr.r, 2);
+    fr = compose(fr, dh(theta[i], median(l.d), median(l.a), median(l.alpha)));
+    e[i].normal = column(fr.r, 0);
+  }
+  if (!closes) return e;
+  CHECK(norm(fr.p - start.p) < 1e-9);
+  for (int k = 0; k < 3; ++k) CHECK(norm(column(fr.r, k) - column(start.r, k)) < 1e-9);
+  return e;
+}
+
 }  // namespace
 
 TEST_CASE("random closed loops satisfy the linkage equations and give back their angles", "[linkage]") {
@@ -307,6 +366,20 @@ TEST_CASE("random closed loops satisfy the linkage equations and give back their
         if (e[i].prismatic) CHECK(contains(out[i], e[i].d));
         else CHECK(angle_in(out[i], e[i].theta));
         CHECK(width(out[i]) < 1e-4);
+      }
+      check_natural_system_holds(f, out);
+      // Offsets are no angles in the charts: even a range across pi + 2 k pi stays as it is.
+      Box wide = out;
+      for (int i = 0; i < n; ++i)
+        if (e[i].prismatic) wide[i] = Interval(e[i].d + 2.0, e[i].d + 6.0);
+      if (std::any_of(e.begin(), e.end(), [](const Entry& x) { return x.prismatic; })) {
+        const std::uint64_t chart = f.chart_for(wide);
+        const Box natural = f.output_to_natural(chart, wide);
+        for (int i = 0; i < n; ++i)
+          if (e[i].prismatic) {
+            CHECK_FALSE(chart >> i & 1);
+            CHECK((natural[i].lower() == wide[i].lower() && natural[i].upper() == wide[i].upper()));
+          }
       }
       // Not vacuous: moving one primary variable breaks some equation.
       if (sub.lph->primary.empty()) continue;  // e.g. a 3R loop: the ground fixes everything
@@ -370,16 +443,20 @@ TEST_CASE("two loops sharing a joint, tied by angle constraints", "[linkage]") {
 
     const auto names = f.output_names();
     const Box out = f.to_output(0, box);
-    REQUIRE(names.size() == static_cast<size_t>(n1 + n2));  // n1 + n2 - 1 joints + "J0@two"
+    // n1 + n2 - 1 joints, "J0@two", and the turn of loop two about J0 (the constraints see it).
+    REQUIRE(names.size() == static_cast<size_t>(n1 + n2 + 1));
     std::map<std::string, double> expected;
     for (auto& x : e1) expected[x.joint] = x.theta;
     for (size_t i = 1; i < e2.size(); ++i) expected[e2[i].joint] = e2[i].theta;
     expected["J0@two"] = e2[0].theta;
+    const V3 &from = e1[n1 - 1].normal, &to = e2[n2 - 1].normal, &axis = e1[0].axis;
+    expected["turn[" + e1[n1 - 1].link + "@two]"] = std::atan2(dot(cross(from, to), axis), dot(from, to));
     for (size_t k = 0; k < names.size(); ++k) {
       INFO(names[k]);
       REQUIRE(expected.count(names[k]));
       CHECK(angle_in(out[k], expected[names[k]]));
     }
+    check_natural_system_holds(f, out);
   }
 }
 
@@ -456,7 +533,8 @@ TEST_CASE("bundled linkage cases parse, with the model sizes reported", "[linkag
       {"6r-rigid.toml", {16, 31, 19, 16, 15}, {19, 40, 24, 19, 21}, 6},
       {"6r-mobile.toml", {13, 24, 15, 13, 11}, {19, 40, 24, 19, 21}, 6},
       {"cyclohexane.toml", {10, 18, 10, 10, 8}, {19, 40, 24, 19, 21}, 6},
-      {"bicyclohexane.toml", {22, 41, 23, 22, 19}, {43, 93, 55, 43, 50}, 12},  // 11 bonds + c1-c2@ring2
+      // 11 bonds + c1-c2@ring2 + turn[c1@ring2]
+      {"bicyclohexane.toml", {22, 41, 23, 22, 19}, {43, 93, 55, 43, 50}, 13},
   };
   for (auto& x : cases) {
     const LinkageCase c = load_file(case_path(x.file));
@@ -500,4 +578,259 @@ TEST_CASE("malformed linkage files are rejected at the offending line", "[linkag
     }
   }
   CHECK(files >= 12);
+}
+
+namespace {
+
+Frame about_z(double angle) { return dh(angle, 0, 0, 0); }
+
+// A solve result holding one solution box, as the search would report it (marked incomplete:
+// no search ran).
+solve::CaseResult one_box(const Box& box) {
+  solve::CaseResult r;
+  r.subproblems.resize(1);
+  r.subproblems[0].solutions.push_back(box);
+  r.complete = false;
+  r.stop_reason = "test";
+  return r;
+}
+
+// The JSON of a verified result, and `linkbox check` on it.
+nlohmann::json result_json(const LinkageFormulation& f, const solve::CaseResult& r, const verify::VerifyReport& v) {
+  nlohmann::json j = io::result_json("test", "test.toml", f, solve::RunOptions{}, r);
+  io::add_verification(j, f, v);
+  return j;
+}
+io::CheckOutcome check_json(const LinkageFormulation& f, const solve::CaseResult& r, const verify::VerifyReport& v) {
+  return io::check_certificates(result_json(f, r, v), f);
+}
+
+// Bicyclohexane with both rings in the chair s (w, -w, w, -w, w, -w) and ring 2 turned by
+// `turn` about c1-c2 (then ring 2's angle at c1-c2 equals ring 1's): the axes and normals of
+// both rings, and the outputs in the formulation's order (ring 1, ring 2 from c2-c7,
+// c1-c2@ring2, the turn).
+struct Decalin {
+  std::vector<Entry> ring1, ring2;
+  Box outputs;
+};
+Decalin decalin(const LinkageFormulation& f, double sign, double turn, double twist = 0) {
+  const double alpha = 1.23;
+  const double w = std::acos(std::cos(alpha) / (1 - std::cos(alpha)));
+  std::vector<double> theta1, theta2;
+  for (int i = 0; i < 6; ++i) theta1.push_back(sign * (i % 2 ? -w : w));
+  theta2 = theta1;
+  theta2[3] += twist;
+  const auto& loops = f.linkage_case().loops;
+  Decalin d;
+  d.ring1 = place_loop(loops[0], theta1, Frame{});
+  d.ring2 = place_loop(loops[1], theta2, about_z(turn), twist == 0);
+  for (double t : theta1) d.outputs.push_back(Interval(t));
+  for (int i = 1; i < 6; ++i) d.outputs.push_back(Interval(theta2[i]));
+  d.outputs.push_back(Interval(theta2[0]));
+  d.outputs.push_back(Interval(turn));
+  for (auto& x : d.outputs) x = Interval(x.lower() - 1e-12, x.upper() + 1e-12);
+  return d;
+}
+
+const M3 identity{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+
+}  // namespace
+
+TEST_CASE("bicyclohexane: 14 natural equations in 13 unknowns, holding at the chair-chair poses", "[linkage][natural]") {
+  const LinkageFormulation f(load_file(case_path("bicyclohexane.toml")));
+  const NaturalSystem s = f.natural_system(0);
+  CHECK(s.equations.size() == 14);  // two ring closures (6 each), two bridgehead constraints
+  REQUIRE(s.unknowns.size() == 13);
+  CHECK(s.unknowns[11] == "t_c1-c2@ring2");
+  CHECK(s.unknowns[12] == "t_turn[c1@ring2]");
+  CHECK(s.missing.empty());
+  // The bridgehead constraint at c1 fixes the turn: cos(beta) = cos^2(alpha) + sin^2(alpha) cos(turn).
+  const double alpha = 1.23, beta = 1.91;
+  const double phi = std::acos((std::cos(beta) - std::cos(alpha) * std::cos(alpha)) / std::pow(std::sin(alpha), 2));
+  for (double sign : {1.0, -1.0})
+    for (double turn : {phi, -phi}) {
+      INFO("chair " << sign << " turn " << turn);
+      const Decalin d = decalin(f, sign, turn);
+      check_natural_system_holds(f, d.outputs);
+      // The search model holds there too and reports the same outputs, turn included.
+      const Box box = model_point(f, {d.ring1, d.ring2}, identity, 1e-12);
+      check_equations_hold(f.subproblem(0), box);
+      const Box out = f.to_output(0, box);
+      REQUIRE(out.size() == d.outputs.size());
+      for (size_t i = 0; i < out.size(); ++i) CHECK(angle_in(out[i], median(d.outputs[i])));
+    }
+}
+
+TEST_CASE("bicyclohexane clusters: a chair-chair pose is consistent, never certified; a twisted one is empty",
+          "[linkage][natural]") {
+  const LinkageFormulation f(load_file(case_path("bicyclohexane.toml")));
+  const double alpha = 1.23, beta = 1.91;
+  const double phi = std::acos((std::cos(beta) - std::cos(alpha) * std::cos(alpha)) / std::pow(std::sin(alpha), 2));
+  const Decalin d = decalin(f, 1, -phi);
+  const auto r = one_box(model_point(f, {d.ring1, d.ring2}, identity, 1e-9));
+  const verify::VerifyReport v = verify::verify_case(f, r);
+  REQUIRE(v.clusters.size() == 1);
+  const verify::ClusterReport& c = v.clusters[0];
+  INFO(c.reason);
+  CHECK(c.status == verify::ClusterStatus::unverified);
+  CHECK(c.reason.rfind("overdetermined: 13 of 14 equations have a unique root in the box; the other 1 contains 0 there", 0) == 0);
+  CHECK(v.certified_roots == 0);
+  REQUIRE(c.subsystem.size() == 13);
+  std::vector<model::Polynomial> square;
+  for (int k : c.subsystem) square.push_back(f.natural_system(c.chart).equations[k]);
+  CHECK(verify::recheck(square, c.certificate));
+  const nlohmann::json j = result_json(f, r, v);
+  const auto checked = io::check_certificates(j, f);
+  CHECK(checked.failures.empty());
+  CHECK(checked.checked == 1);
+  // What check re-runs is what was recorded: another subsystem, or the cluster called empty
+  // by an equation that contains 0 there, fail.
+  nlohmann::json other = j;
+  other["clusters"][0]["subsystem"][0] = 13;
+  CHECK(io::check_certificates(other, f).failures.size() == 1);
+  nlohmann::json claimed_empty = j;
+  claimed_empty["clusters"][0]["status"] = "empty";
+  claimed_empty["clusters"][0]["excluding_equation"] = 0;
+  CHECK(io::check_certificates(claimed_empty, f).failures.size() == 1);
+
+  // One torsion of ring 2 off by 0.01: ring 2 no longer closes, the cluster around it is
+  // proved to hold no root.
+  const Decalin bad = decalin(f, 1, -phi, 0.01);
+  const auto far = one_box(model_point(f, {bad.ring1, bad.ring2}, identity, 1e-9, false));
+  const verify::VerifyReport w = verify::verify_case(f, far);
+  REQUIRE(w.clusters.size() == 1);
+  INFO(w.clusters[0].reason);
+  CHECK(w.clusters[0].status == verify::ClusterStatus::empty);
+  CHECK(w.empty == 1);
+  const auto checked_far = check_json(f, far, w);
+  CHECK(checked_far.failures.empty());
+  CHECK(checked_far.checked == 1);
+
+  // A box the search kept (--sigma 0.1 --rho 0.95 --prune lp) next to a chair-boat root:
+  // every natural equation contains 0 on it, a square subsystem's Newton image misses it.
+  const Box kept = test::read_box_file("bicyclohexane-empty-box.txt");
+  REQUIRE(kept.size() == f.subproblem(0).system.variables.size());
+  const auto spurious = one_box(kept);
+  const verify::VerifyReport x = verify::verify_case(f, spurious);
+  REQUIRE(x.clusters.size() == 1);
+  INFO(x.clusters[0].reason);
+  CHECK(x.clusters[0].status == verify::ClusterStatus::empty);
+  CHECK(x.clusters[0].subsystem.size() == 13);
+  CHECK(x.clusters[0].excluding_equation == -1);
+  CHECK(check_json(f, spurious, x).failures.empty());
+}
+
+namespace {
+// "#   <key> = (x, y, ...)" or "#   <key> = x" in a case file's comments.
+std::vector<double> planted(const std::string& file, const std::string& key) {
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    const size_t at = line.find(key + " = ");
+    if (line.rfind("#", 0) != 0 || at == std::string::npos) continue;
+    std::string list = line.substr(at + key.size() + 3);
+    for (char& ch : list)
+      if (ch == '(' || ch == ')' || ch == ',') ch = ' ';
+    std::istringstream values(list);
+    std::vector<double> out;
+    for (double x; values >> x;) out.push_back(x);
+    return out;
+  }
+  FAIL("no planted " << key << " in " << file);
+  return {};
+}
+}  // namespace
+
+TEST_CASE("two rings (6R + 7R, cases/linkages/rings-6-7.toml): square natural system, the planted pose certified",
+          "[linkage][natural]") {
+  const std::string file = case_path("rings-6-7.toml");
+  const LinkageFormulation f(load_file(file));
+  const std::vector<double> theta1 = planted(file, "ring1 theta"), theta2 = planted(file, "ring2 theta"),
+                            turn = planted(file, "turn[A@ring2]");
+  REQUIRE(theta1.size() == 6);
+  REQUIRE(theta2.size() == 7);
+  REQUIRE(turn.size() == 1);
+  const NaturalSystem s = f.natural_system(0);
+  CHECK(s.equations.size() == 14);
+  CHECK(s.unknowns.size() == 14);
+  CHECK(f.output_names().back() == "turn[A@ring2]");
+
+  Box planted_out;
+  for (double t : theta1) planted_out.push_back(Interval(t - 1e-12, t + 1e-12));
+  for (size_t i = 1; i < 7; ++i) planted_out.push_back(Interval(theta2[i] - 1e-12, theta2[i] + 1e-12));
+  for (double t : {theta2[0], turn[0]}) planted_out.push_back(Interval(t - 1e-12, t + 1e-12));
+  check_natural_system_holds(f, planted_out);
+
+  // A solution box around the planted pose, as the search would find it: certified in the
+  // natural system through both loop blocks and the constraints between them.
+  const auto& loops = f.linkage_case().loops;
+  const auto ring1 = place_loop(loops[0], theta1, Frame{}), ring2 = place_loop(loops[1], theta2, about_z(turn[0]));
+  const auto r = one_box(model_point(f, {ring1, ring2}, identity, 1e-6));
+  const verify::VerifyReport v = verify::verify_case(f, r);
+  REQUIRE(v.clusters.size() == 1);
+  const verify::ClusterReport& c = v.clusters[0];
+  INFO(c.reason);
+  REQUIRE(c.status == verify::ClusterStatus::certified);
+  CHECK(v.certified_roots == 1);
+  CHECK_FALSE(v.exact);  // no search ran
+  for (size_t i = 0; i < planted_out.size(); ++i) {
+    CHECK(angle_in(c.root[i], median(planted_out[i])));
+    CHECK(width(c.root[i]) < 1e-9);
+  }
+  CHECK(verify::recheck(f.natural_system(c.chart).equations, c.certificate));
+  const auto checked = check_json(f, r, v);
+  CHECK(checked.failures.empty());
+  CHECK(checked.checked == 1);
+}
+
+TEST_CASE("loop patterns without a natural system say why, and verification reports it", "[linkage][natural]") {
+  std::mt19937 rng(3);
+  const auto lines = random_lines(rng, 10, 0.0);
+  auto name = [](std::vector<Entry>& e, const std::string& joint, const std::string& link) {
+    for (size_t i = 0; i < e.size(); ++i) e[i].joint = joint + std::to_string(i), e[i].link = link + std::to_string(i);
+  };
+  SECTION("a loop sharing two joints with the loop before it") {
+    // Loop two runs through lines 0 and 1 like loop one: joints J0, J1 and links L5 -> L0 -> L1.
+    auto e1 = measure_loop(lines, {0, 1, 2, 3, 4, 5}, rng), e2 = measure_loop(lines, {0, 1, 6, 7, 8}, rng);
+    name(e1, "J", "L");
+    name(e2, "K", "M");
+    e2[0].joint = "J0", e2[1].joint = "J1";
+    e2[0].link = "L0", e2[1].link = "L1", e2[4].link = "L5";
+    if (e2[0].alpha != e1[0].alpha) {
+      // Link L0 is one normal for both loops: measured with the other sign here, flip it
+      // (a, alpha and the normal change sign, the angles on both sides of it turn by pi).
+      e2[0].a = -e2[0].a, e2[0].alpha = -e2[0].alpha, e2[0].normal = -1.0 * e2[0].normal;
+      e2[0].theta = std::remainder(e2[0].theta + M_PI, 2 * M_PI);
+      e2[1].theta = std::remainder(e2[1].theta + M_PI, 2 * M_PI);
+    }
+    LinkageCase c;
+    c.file = "shared-path";
+    c.ground = "L3";
+    c.loops.push_back(make_loop("one", e1, rng));
+    c.loops.push_back(make_loop("two", e2, rng));
+    const LinkageFormulation f(c);
+    const NaturalSystem s = f.natural_system(0);
+    CHECK(s.equations.empty());
+    CHECK(s.missing == "loop 'two' shares 2 joints ('J0', 'J1') with the loops placed before it; only one shared "
+                       "joint per loop is supported");
+    const Box box = model_point(f, {e1, e2}, ground_frame(e1, 3), 1e-9);
+    check_equations_hold(f.subproblem(0), box);
+    const verify::VerifyReport v = verify::verify_case(f, one_box(box));
+    REQUIRE(v.clusters.size() == 1);
+    CHECK(v.clusters[0].status == verify::ClusterStatus::unverified);
+    CHECK(v.clusters[0].reason == "no natural system to certify in: " + s.missing);
+  }
+  SECTION("a loop tied to the others by an angle constraint only") {
+    auto e1 = measure_loop(lines, {0, 1, 2, 3}, rng), e2 = measure_loop(lines, {4, 5, 6, 7}, rng);
+    name(e1, "J", "L");
+    name(e2, "K", "M");
+    LinkageCase c;
+    c.file = "tied";
+    c.ground = "L0";
+    c.loops.push_back(make_loop("one", e1, rng));
+    c.loops.push_back(make_loop("two", e2, rng));
+    c.angle_constraints.push_back({"", "J1", "K2", around(std::acos(dot(e1[1].axis, e2[2].axis))), 3});
+    const LinkageFormulation f(c);
+    CHECK(f.natural_system(0).missing.find("loop 'two' shares no joint with the loops placed before it") == 0);
+    CHECK(f.chart_for(Box(f.output_names().size(), Interval(3.0))) == 0);
+  }
 }

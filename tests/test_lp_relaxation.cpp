@@ -5,13 +5,12 @@
 #include "prune/lp/safe_lp.hpp"
 #include "prune/lp_relaxation.hpp"
 #include "io/case_file.hpp"
+#include "tests/box_file.hpp"
 
 #include <catch2/catch.hpp>
 #include <gmpxx.h>
 
 #include <ctime>
-#include <fstream>
-#include <sstream>
 #include <cmath>
 #include <random>
 
@@ -242,16 +241,7 @@ TEST_CASE("safe LP bounds match the exact LP on a bicyclohexane relaxation", "[l
   io::LoadedCase c = io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/linkages/bicyclohexane.toml");
   const formulate::SubProblem sub = c.formulation->subproblem(0);
   REQUIRE(sub.lph);
-  std::ifstream in(std::string(LINKBOX_SOURCE_DIR) + "/tests/data/bicyclohexane-clp-box.txt");
-  std::string line;
-  Box box;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::string lo, hi;
-    fields >> lo >> hi;
-    box.push_back(Interval(std::strtod(lo.c_str(), nullptr), std::strtod(hi.c_str(), nullptr)));
-  }
+  const Box box = test::read_box_file("bicyclohexane-clp-box.txt");
   REQUIRE(box.size() == sub.lph->variables.size());
   const LinearProgram lp = prune::lp::build_lph_relaxation(*sub.lph, box);
   prune::lp::SafeLp safe;

@@ -1,24 +1,35 @@
 // Verification outcomes that must never be over-claimed: a double root, a root on the edge
-// of the domain, a box without roots; and the exact statement when everything is proved.
+// of the domain, a box without roots, roots of overdetermined systems; and the exact
+// statement when everything is proved.
 #include "io/case_file.hpp"
+#include "io/result_json.hpp"
+#include "io/verify_json.hpp"
 #include "solve/solve_case.hpp"
 #include "verify/certify_case.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 using namespace linkbox;
 
 namespace {
 
-verify::VerifyReport solve_text(const std::string& toml, std::vector<std::string> prune = {"hc4", "newton"}) {
+verify::VerifyReport solve_text(const std::string& toml, std::vector<std::string> prune = {"hc4", "newton"},
+                                double sigma = 1e-6, io::CheckOutcome* checked = nullptr) {
   io::LoadedCase c = io::load_case_text(toml, "inline.toml");
   solve::RunOptions o;
   o.progress = false;
   o.strategy.contractors = std::move(prune);
-  o.params.sigma = 1e-6;
+  o.params.sigma = sigma;
   auto r = solve::solve_case(*c.formulation, o);
   REQUIRE(r.complete);
-  return verify::verify_case(*c.formulation, r);
+  auto v = verify::verify_case(*c.formulation, r);
+  if (checked) {
+    nlohmann::json j = io::result_json(c.name, c.file, *c.formulation, o, r);
+    io::add_verification(j, *c.formulation, v);
+    *checked = io::check_certificates(j, *c.formulation);
+  }
+  return v;
 }
 
 }  // namespace
@@ -99,4 +110,45 @@ TEST_CASE("a polynomial case goes through the L/P/H path (safe and exact LP) and
     CHECK(v.certified_roots == 6);
     CHECK(v.exact);
   }
+}
+
+TEST_CASE("an overdetermined system: its root is a consistent candidate, never certified", "[verify][polynomial]") {
+  io::CheckOutcome checked;
+  auto v = solve_text(R"(kind = "polynomial"
+name = "t"
+variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] } ]
+equations = [ "x + y - 1", "x - y", "x^2 + y^2 - 1/2" ])", {"hc4"}, 1e-6, &checked);
+  CHECK(v.certified_roots == 0);
+  CHECK_FALSE(v.exact);
+  REQUIRE(v.unverified >= 1);
+  for (auto& c : v.clusters) {
+    if (c.status != verify::ClusterStatus::unverified) continue;
+    INFO(c.reason);
+    CHECK(c.reason.rfind("overdetermined: 2 of 3 equations have a unique root in the box; the other 1 contains 0 there", 0) == 0);
+    CHECK(c.subsystem.size() == 2);
+    CHECK((contains(c.certificate.box[0], 0.5) && contains(c.certificate.box[1], 0.5)));
+  }
+  CHECK(v.headline.find("overdetermined: 2 of 3 equations have a unique root in the box") != std::string::npos);
+  CHECK(checked.failures.empty());
+  CHECK(checked.checked >= 1);
+}
+
+TEST_CASE("an overdetermined system with a curve of roots: crossings leave out the extra equations",
+          "[verify][polynomial]") {
+  // The unit circle in the plane z = 0, written with two more equations than a curve needs.
+  io::CheckOutcome checked;
+  auto v = solve_text(R"(kind = "polynomial"
+name = "t"
+variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] }, { name = "z", domain = [-1, 1] } ]
+equations = [ "x^2 + y^2 - 1", "z", "z*x", "z*y" ])", {"hc4"}, 0.05, &checked);
+  CHECK(v.certified_roots == 0);
+  CHECK(v.curves >= 1);
+  for (auto& c : v.clusters) {
+    if (c.status != verify::ClusterStatus::curve) continue;
+    CHECK(2 * static_cast<size_t>(c.crossings_certified) >= c.crossings.size());
+    for (auto& x : c.crossings)
+      if (x.certificate.status == verify::Status::certified) CHECK(x.dropped_equations.size() == 2);
+  }
+  CHECK(checked.failures.empty());
+  CHECK(checked.checked >= 1);
 }

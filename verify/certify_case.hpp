@@ -22,7 +22,9 @@ struct CurveCrossing {
   // chart holds the whole cluster (a curve winding around a whole turn).
   std::uint64_t chart = 0;
   Certificate certificate;
-  int dropped_equation = -1;  // square system used: the natural equations but this one
+  // The natural equations left out of the crossing's system (one fewer kept than unknowns);
+  // each must contain 0 on the crossing box.
+  std::vector<int> dropped_equations;
 };
 
 struct ClusterReport {
@@ -32,6 +34,10 @@ struct ClusterReport {
   Box hull;                                     // output variables (angles unwrapped)
   std::uint64_t chart = 0;
   Certificate certificate;                      // in the chart's natural unknowns
+  // Natural systems that are not square: the equations `certificate` is about (a square
+  // subsystem; empty = all), or the one whose range over certificate.box misses 0.
+  std::vector<int> subsystem;
+  int excluding_equation = -1;
   Box root;                                     // certified box in the output variables
   std::vector<formulate::MatrixOutput> outputs;  // declared outputs over the certified box
   std::vector<CurveCrossing> crossings;         // curve clusters

@@ -98,22 +98,27 @@ def show(name, entries):
     print("# theta =", ", ".join("%r" % e["theta"] for e in entries))
 
 
-# Link lengths 1e-3 ... 1e3 in one loop: five chosen DH steps, the sixth link measured.
-scale_steps = [
-    (0.3, 0.0, 1e-3, 1.1),
-    (-0.9, 0.2, 1e3, 0.7),
-    (1.7, -4.0, 2.5, 1.9),
-    (0.4, 30.0, 1.0e3, 1.3),
-    (-2.1, 0.5, 0.07, 0.8),
-]
-show("linkage-scales", close(scale_steps, chain([1.0, 0.0, 0.0], scale_steps)))
+def main():
+    # Link lengths 1e-3 ... 1e3 in one loop: five chosen DH steps, the sixth link measured.
+    scale_steps = [
+        (0.3, 0.0, 1e-3, 1.1),
+        (-0.9, 0.2, 1e3, 0.7),
+        (1.7, -4.0, 2.5, 1.9),
+        (0.4, 30.0, 1.0e3, 1.3),
+        (-2.1, 0.5, 0.07, 0.8),
+    ]
+    show("linkage-scales", close(scale_steps, chain([1.0, 0.0, 0.0], scale_steps)))
 
-# A twist of 1e-7 between joints 3 and 4 (nearly parallel axes 0.8 apart: locally planar).
-twist_steps = [
-    (0.5, 0.1, 0.6, 1.2),
-    (-0.7, 0.3, 0.9, 0.5),
-    (1.1, 0.0, 0.8, 1e-7),
-    (0.6, -0.2, 0.7, 1.4),
-    (-1.3, 0.4, 0.5, 0.9),
-]
-show("linkage-twist-1e-7", close(twist_steps, chain([1.0, 0.0, 0.0], twist_steps)))
+    # A twist of 1e-7 between joints 3 and 4 (nearly parallel axes 0.8 apart: locally planar).
+    twist_steps = [
+        (0.5, 0.1, 0.6, 1.2),
+        (-0.7, 0.3, 0.9, 0.5),
+        (1.1, 0.0, 0.8, 1e-7),
+        (0.6, -0.2, 0.7, 1.4),
+        (-1.3, 0.4, 0.5, 0.9),
+    ]
+    show("linkage-twist-1e-7", close(twist_steps, chain([1.0, 0.0, 0.0], twist_steps)))
+
+
+if __name__ == "__main__":
+    main()

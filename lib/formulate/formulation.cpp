@@ -9,7 +9,7 @@ SubProblem PolynomialFormulation::subproblem(size_t) const {
 }
 
 NaturalSystem PolynomialFormulation::natural_system(std::uint64_t) const {
-  return {system_.equations, system_.names(), system_.domain()};
+  return {system_.equations, system_.names(), system_.domain(), {}};
 }
 
 }  // namespace linkbox::formulate

@@ -28,13 +28,15 @@ struct MatrixOutput {
   std::vector<std::vector<Interval>> rows;
 };
 
-// The square system in which roots are certified, in the case's natural unknowns (e.g.
-// half-angle tangents of the joints in one chart of half-turn shifts), never in dummy or
-// redundant variables.
+// The system in which roots are certified, in the case's natural unknowns (e.g. half-angle
+// tangents of the joints in one chart of half-turn shifts), never in dummy or redundant
+// variables. Certification needs it square; verify says so when it is not (a mobile
+// linkage has fewer equations than unknowns, one closing by symmetry more).
 struct NaturalSystem {
   std::vector<model::Polynomial> equations;
   std::vector<std::string> unknowns;
   Box domain;  // where roots count; empty = unbounded (angles: every chart covers the circle)
+  std::string missing;  // no equations: why the formulation has none (empty: not given)
 };
 
 class Formulation {

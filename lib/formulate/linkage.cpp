@@ -313,6 +313,7 @@ LinkageFormulation::LinkageFormulation(LinkageCase c, LinkageOptions options)
   index_case();
   ground_frame();
   build_model();
+  plan_natural();
 }
 
 void LinkageFormulation::index_case() {
@@ -392,6 +393,8 @@ void LinkageFormulation::ground_frame() {
       if (loop.links[g].link != case_.ground) continue;
       Normal& nm = normals_[loop_normals_[l][g]];
       nm.ground = true;
+      ground_loop_ = static_cast<int>(l);
+      ground_entry_ = static_cast<int>(g);
       const Interval zero(0.0), one(1.0);
       auto set = [&](int vector, const Interval& x, const Interval& y, const Interval& z) {
         vectors_[vector] = {Coordinate{-1, one, x}, Coordinate{-1, one, y}, Coordinate{-1, one, z}};
@@ -630,7 +633,7 @@ Box LinkageFormulation::to_output(size_t, const Box& box) const {
   const int joints = static_cast<int>(joint_names_.size());
   Box out;
   for (auto& o : outputs_) {
-    if (prismatic_[o.joint]) {
+    if (o.is_offset(prismatic_)) {
       out.push_back(offsets_[o.joint].at(box));
       continue;
     }

@@ -95,15 +95,21 @@ class LinkageFormulation final : public Formulation {
   SubProblem subproblem(size_t) const override { return sub_; }
   // One per joint (theta for revolute, the offset d for prismatic joints), measured in the
   // first loop through the joint; a revolute joint that further loops see between other
-  // normals adds "joint@loop" for each.
+  // normals adds "joint@loop" for each. Where an angle constraint ties the orientations of
+  // two loops, the turn that places the later loop is an output too: "turn[link@loop]" is
+  // the angle about the joint the loop shares with those placed before it, from the normal
+  // of the link before that joint in the loop it is placed from to its normal in `loop`.
   std::vector<std::string> output_names() const override;
   // Angles in (-pi, pi]; an enclosure across the cut at pi is reported around pi.
   Box to_output(size_t index, const Box& box) const override;
   bool outputs_are_angles() const override { return !has_prismatic_; }
 
-  // Certification (linkage_natural.cpp): single loops are certified in their DH loop
-  // closure (loop_closure.hpp) over the half-angle tangents of a chart of half-turn shifts.
-  // Multi-loop linkages and angle constraints have no natural system yet (verify says so).
+  // Certification (linkage_natural.cpp): the natural unknowns are the outputs (half-angle
+  // tangents of the angles in a chart of half-turn shifts, prismatic offsets as they are);
+  // the equations are the DH loop closure of each loop (loop_closure.hpp), then one per
+  // angle constraint, between axes placed from the ground link's frame through the turns.
+  // Loops are placed one after another, each sharing exactly one joint with those placed
+  // before it; other patterns have no natural system (NaturalSystem::missing says why).
   std::uint64_t chart_for(const Box& output_hull) const override;
   NaturalSystem natural_system(std::uint64_t chart) const override;
   Box output_to_natural(std::uint64_t chart, const Box& output) const override;
@@ -146,10 +152,34 @@ class LinkageFormulation final : public Formulation {
     std::string name;
     int joint;
     int normal_in = -1, normal_out = -1;  // revolute: theta from a_in to a_out about d
+    bool turn = false;                     // a loop's turn about `joint` (an angle even there)
+    bool is_offset(const std::vector<bool>& prismatic) const { return prismatic[joint] && !turn; }
+  };
+  // Loop `loop` is placed from loop `parent` through the joint they share, at entry
+  // `entry` of this loop and `parent_entry` of the parent: the frame of the link before it
+  // here is that of the parent's link before it turned about the joint by the output `turn`
+  // (-1 when no equation needs it: the loop's orientation about the joint then matters to
+  // no output). The ground's loop has parent -1 and is placed at the ground link.
+  struct Placement {
+    int loop = -1, parent = -1, entry = -1, parent_entry = -1, turn = -1;
+  };
+  // A factor of the rotation chain from the world frame to a link frame: Rz of the joint
+  // (revolute: its unknown; prismatic: its theta) or Rx(alpha) of entry `entry` of `loop`,
+  // or the turn placing `loop`; walked backwards round a loop it is inverted.
+  struct ChainFactor {
+    enum Kind { joint, twist, turn } kind;
+    int loop, entry;
+    bool inverse;
+    bool operator==(const ChainFactor&) const = default;
   };
   void index_case();
   void ground_frame();
   void build_model();
+  void plan_natural();  // placements_, turn outputs, unknown_of_entry_, or no_natural_
+  std::vector<ChainFactor> frame_chain(int loop, int position) const;
+  std::vector<ChainFactor> axis_chain(int joint) const;  // to a frame whose z is the axis
+  model::Polynomial angle_equation(const AngleConstraint& ac, std::uint64_t chart) const;
+  std::uint64_t angle_outputs() const;  // bit k: output k is an angle (not an offset)
   std::array<Interval, 3> vector_value(int vector, const Box& box) const;
 
   LinkageCase case_;
@@ -166,6 +196,10 @@ class LinkageFormulation final : public Formulation {
   std::vector<Output> outputs_;
   bool has_prismatic_ = false;
   SubProblem sub_;
+  int ground_loop_ = -1, ground_entry_ = -1;
+  std::vector<Placement> placements_;  // in placement order, the ground's loop first
+  std::vector<std::vector<int>> unknown_of_entry_;  // [loop][entry] -> output index
+  std::string no_natural_;  // why there is no natural system (empty: there is one)
 };
 
 }  // namespace linkbox::formulate

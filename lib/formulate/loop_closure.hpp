@@ -9,9 +9,31 @@
 //                Q v Q* / |Q|^2 and the sum multiplied by prod_j (1 + t_j^2) > 0.
 #include "formulate/linkage.hpp"
 
+#include <array>
 #include <cstdint>
 
 namespace linkbox::formulate {
+
+// A quaternion (w, x, y, z) with polynomial entries: a rotation written in half-angle
+// tangents, not normalised (it rotates v to Q v Q* / |Q|^2).
+using QuaternionPolynomial = std::array<model::Polynomial, 4>;
+
+QuaternionPolynomial qmul(const QuaternionPolynomial& a, const QuaternionPolynomial& b);
+QuaternionPolynomial conjugate(const QuaternionPolynomial& q);
+
+// A factor of a rotation chain and its squared norm |q|^2, kept as the exact polynomial
+// (1 + t^2 or 1) rather than expanded from q, so that dividing by it is exact.
+struct RotationFactor {
+  QuaternionPolynomial q;
+  model::Polynomial norm2;
+};
+
+// Rz(angle) with angle = 2 atan(t) (+ pi when bit `variable` of `chart` is set), t the
+// unknown `variable`: q = 1 + t k (or k (1 + t k)), |q|^2 = 1 + t^2.
+RotationFactor rotation_about_z(int variable, std::uint64_t chart);
+// Rz(theta) for a constant angle, and Rx(alpha): unit quaternions with interval entries.
+RotationFactor fixed_rotation_about_z(const Interval& theta);
+RotationFactor rotation_about_x(const Interval& alpha);
 
 // `variable[i]`: the unknown of entry i of the loop: the half-angle tangent of a revolute
 // joint (shifted when bit `variable[i]` of `chart` is set) or the offset of a prismatic one.

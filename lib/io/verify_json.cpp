@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <map>
 
 namespace linkbox::io {
@@ -83,14 +84,18 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
       cj["distances"] = c.distances;
       cj["max_distance"] = c.max_distance;
     }
-    if (c.status != verify::ClusterStatus::curve) cj["certificate"] = certificate_json(c.certificate);
+    if (c.status != verify::ClusterStatus::curve) {
+      cj["certificate"] = certificate_json(c.certificate);
+      if (!c.subsystem.empty()) cj["subsystem"] = c.subsystem;
+      if (c.excluding_equation >= 0) cj["excluding_equation"] = c.excluding_equation;
+    }
     if (c.status == verify::ClusterStatus::curve) {
       json xs = json::array();
       for (auto& x : c.crossings) {
         json xj = certificate_json(x.certificate);
         xj["member"] = x.box;
         xj["chart"] = x.chart;
-        xj["dropped_equation"] = x.dropped_equation;
+        xj["dropped_equations"] = x.dropped_equations;
         xs.push_back(xj);
       }
       cj["crossings"] = xs;
@@ -103,6 +108,23 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
 }
 
 namespace {
+// The natural equations a certificate speaks of: those listed under `key`, or all of them.
+// Returns false when an index is out of range.
+bool equations_named(const json& c, const char* key, const std::vector<model::Polynomial>& all,
+                     std::vector<model::Polynomial>& out) {
+  if (!c.contains(key)) {
+    out = all;
+    return true;
+  }
+  out.clear();
+  for (auto& r : c.at(key)) {
+    const int i = r.get<int>();
+    if (i < 0 || i >= static_cast<int>(all.size())) return false;
+    out.push_back(all[i]);
+  }
+  return true;
+}
+
 // Whether `hull` covers `b`, angle sides modulo whole turns.
 bool covers(const Box& hull, const Box& b, bool angles) {
   if (hull.size() != b.size()) return false;
@@ -162,10 +184,34 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
       ++out.checked;
       const json& cj = c.at("certificate");
       verify::Certificate cert = certificate_from(cj);
-      if (!verify::recheck_exclusion(sys.equations, cert.box, cert.preconditioner, cert.method))
+      std::vector<model::Polynomial> eqs;
+      bool holds = equations_named(c, "subsystem", sys.equations, eqs);
+      if (holds && c.contains("excluding_equation")) {
+        // Proved by evaluation: that equation's range over the box misses 0.
+        const int k = c.at("excluding_equation");
+        holds = k >= 0 && k < static_cast<int>(sys.equations.size()) && !zero_in(sys.equations[k].eval(cert.box));
+      } else if (holds) {
+        holds = verify::recheck_exclusion(eqs, cert.box, cert.preconditioner, cert.method);
+      }
+      if (!holds)
         out.failures.push_back(where + ": the proof that this cluster holds no root does not hold");
       else if (!contains(cert.box, f.output_to_natural(chart, box_from(c.at("hull")))))
         out.failures.push_back(where + ": the box proved empty does not cover the cluster");
+    } else if (status == "unverified" && c.contains("subsystem") && c.at("certificate").at("status") == "certified") {
+      // An overdetermined system's square subsystem: its unique root is what the reason
+      // speaks of, and the other equations contain 0 on its box.
+      ++out.checked;
+      std::vector<model::Polynomial> eqs;
+      const verify::Certificate cert = certificate_from(c.at("certificate"));
+      if (!equations_named(c, "subsystem", sys.equations, eqs) || !verify::recheck(eqs, cert)) {
+        out.failures.push_back(where + ": the certificate of its square subsystem does not hold");
+        continue;
+      }
+      for (size_t k = 0; k < sys.equations.size(); ++k)
+        if (!zero_in(sys.equations[k].eval(cert.box))) {
+          out.failures.push_back(where + ": natural equation " + std::to_string(k) + " misses 0 on the subsystem's box");
+          break;
+        }
     } else if (status == "curve") {
       for (auto& x : c.at("crossings")) {
         if (x.at("status") != "certified") continue;
@@ -173,17 +219,22 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
         // Each crossing in its own chart: a curve around a whole turn fits no single one.
         const std::uint64_t crossing_chart = x.value("chart", chart);
         const auto& full = systems(crossing_chart).equations;
-        auto eqs = full;
-        const int dropped = x.at("dropped_equation");
-        const bool drops = dropped >= 0 && dropped < static_cast<int>(eqs.size());
-        if (drops) eqs.erase(eqs.begin() + dropped);
+        std::vector<model::Polynomial> eqs, dropped;
+        std::vector<bool> kept(full.size(), true);
+        bool indices_ok = true;
+        for (auto& d : x.at("dropped_equations")) {
+          const int k = d.get<int>();
+          indices_ok = indices_ok && k >= 0 && k < static_cast<int>(kept.size());
+          if (indices_ok) kept[k] = false;
+        }
+        for (size_t k = 0; k < kept.size(); ++k) (kept[k] ? eqs : dropped).push_back(full[k]);
         const verify::Certificate cert = certificate_from(x);
-        if (!verify::recheck(eqs, cert)) {
+        if (!indices_ok || !verify::recheck(eqs, cert)) {
           out.failures.push_back(where + ": a curve-crossing certificate does not hold");
           continue;
         }
-        if (drops && !zero_in(full[dropped].eval(cert.box)))
-          out.failures.push_back(where + ": the dropped equation does not vanish on a crossing box");
+        if (std::any_of(dropped.begin(), dropped.end(), [&](auto& p) { return !zero_in(p.eval(cert.box)); }))
+          out.failures.push_back(where + ": a dropped equation does not vanish on a crossing box");
         // The crossing must be in the member box it is listed for.
         const auto& m = c.at("members").at(x.at("member").get<size_t>());
         auto it = solutions.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
