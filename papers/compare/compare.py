@@ -19,10 +19,13 @@ time_vs_error.png, boxes_vs_sigma.png and solution_boxes_vs_sigma.png.
 
 Metrics. time: the search's wall time (JSON stats.seconds), median over repetitions;
 verify_s: the certification's; processed / solution_boxes (JSON stats); clusters; certified
-roots; exact (the headline is "exactly N"); lp_calls: calls of the "lp" contractor (the JSON
-has no count of LPs solved; each call solves several); err_root: the largest distance (max
-norm, output variables, angles modulo 2 pi) from a point of a solution box to the certified
-root box of its cluster, over certified clusters; residual: the largest residual of the
+roots; exact (the headline is "exactly N"); lp_calls: calls of the "lp" contractor;
+lps_solved: the LPs they solved (JSON contractors[].lps_solved); err_root: the largest distance
+(max norm, output variables, angles modulo 2 pi) from a point of a solution box to the
+certified root box of its cluster, over certified clusters (the JSON's clusters[].max_distance
+is the same bound; this script recomputes it as a cross-check); rigorous_residual: the largest
+of the JSON's solutions[].residual (an outward-rounded bound on max |f| at the centre of the
+search box, in the sub-problem's own variables); residual: the largest residual of the
 case's equations at the solution boxes' centres, evaluated here in double precision from the
 case file (polynomial: the equations; spherical: |vector part| / |q| of each loop's
 quaternion product; linkage, one loop of revolute joints: max |T - I| of the DH product).
@@ -72,7 +75,8 @@ QUICK_CASES = ["wrist", "circle-line"]
 
 CSV_FIELDS = ["case", "kind", "strategy", "prune", "lp", "arith", "sigma", "status", "reps", "time_s", "time_min_s",
               "time_max_s", "verify_s", "processed", "solution_boxes", "clusters", "certified_roots", "unverified",
-              "curves", "empty", "exact", "complete", "lp_calls", "err_root", "residual", "headline"]
+              "curves", "empty", "exact", "complete", "lp_calls", "lps_solved", "err_root", "max_distance",
+              "rigorous_residual", "residual", "headline"]
 
 
 # ---------------------------------------------------------------------------------------
@@ -240,6 +244,11 @@ def metrics(j, residual):
     m["clusters"] = len(clusters)
     lp = [c for c in j.get("contractors", []) if c.get("name") == "lp"]
     m["lp_calls"] = sum(c.get("calls", 0) for c in lp) if lp else None
+    m["lps_solved"] = sum(c.get("lps_solved", 0) for c in lp) if lp else None
+    distances = [c["max_distance"] for c in clusters if c.get("status") == "certified" and "max_distance" in c]
+    m["max_distance"] = max(distances) if distances else None
+    residuals = [s["residual"] for s in j.get("solutions", []) if s.get("residual") is not None]
+    m["rigorous_residual"] = max(residuals) if residuals else None
     angles = j.get("variables_unit") in ("radian", "radians", "rad") or j.get("kind") in ("spherical", "linkage")
     # Solutions by (sub-problem, index within it), as cluster members name them.
     by_member, count = {}, {}
@@ -542,14 +551,14 @@ def write_md(rows, cases, a, path, elapsed):
         L.append("")
     L.append("## Notes on the metrics")
     L.append("")
-    L.append("- `lp_calls` counts calls of the `lp` contractor: the JSON has no count of LPs solved (each call solves "
-             "up to two per variable, repeatedly). Suggested JSON addition: `contractors[].lps_solved` (and "
-             "`lp_iterations`).")
+    L.append("- `lp_calls` counts calls of the `lp` contractor (one shrink pass each), `lps_solved` the LPs they "
+             "solved (JSON `contractors[].lps_solved`; up to two per primary variable and pass).")
     L.append("- `err_root` (largest distance from a point of a solution box to its cluster's certified root box) is "
-             "only defined for certified clusters. `residual` is computed by this script in double precision at the "
-             "box centres from the case file (no library support); suggested JSON addition: per solution box, "
-             "`residual` = a rigorous enclosure of max_i |f_i| at the box centre, and per cluster the distance from "
-             "each member box to the certified root.")
+             "only defined for certified clusters; `max_distance` is the library's own rigorous bound of the same "
+             "(JSON `clusters[].max_distance`). `rigorous_residual` is the largest JSON `solutions[].residual` (an "
+             "outward-rounded bound on max_i |f_i| at the centre of the search box, in the sub-problem's variables); "
+             "`residual` is recomputed by this script in double precision at the centres of the output boxes, from "
+             "the case file.")
     L.append("- Times are the search's wall time on a shared machine (other builds may run at the same time): "
              "compare orders of magnitude, not percents.")
     L.append("")
