@@ -96,11 +96,12 @@ Outcome LpRelaxation::contract(Box& box) {
   // A primary variable already at its lower (upper) bound in the optimal point of an
   // earlier LP of this pass cannot be raised (lowered) by its own LP, which is skipped
   // (Gleixner et al., "Three enhancements for optimization-based bound tightening", 2017).
-  // Skipping an LP is always sound: it only forgoes pruning.
-  const size_t n = work.size();
-  std::vector<char> low_reached(n, 0), high_reached(n, 0);
+  // A bound tightened since may cut that point off, so the skip can forgo a little pruning;
+  // skipping an LP is always sound.
+  std::vector<char> low_reached(work.size(), 0), high_reached(work.size(), 0);
   std::vector<double> point;
-  auto note_point = [&] {
+  auto solved = [&] {
+    ++lps_solved_;
     if (!solver_->last_point(point)) return;
     for (int j : system_->primary) {
       const double tolerance = 1e-9 * (work[j].upper() - work[j].lower());
@@ -112,27 +113,25 @@ Outcome LpRelaxation::contract(Box& box) {
     // Algorithm 2 lines 8-11. Each new bound is fed to the next LPs, as the paper's
     // in-place update of the box does.
     Interval& range = work[var];
-    if (low_reached[var] && high_reached[var]) continue;
-    lp::LpBound low = low_reached[var] ? lp::LpBound{lp::LpStatus::unknown, range.lower()} : solver_->minimize(var);
     if (!low_reached[var]) {
-      ++lps_solved_;
-      note_point();
+      const lp::LpBound low = solver_->minimize(var);
+      solved();
+      if (low.status == lp::LpStatus::infeasible) return Outcome::empty;
+      if (low.status == lp::LpStatus::bounded && low.value > range.lower()) {
+        if (low.value > range.upper()) return Outcome::empty;  // rigorous bound beyond the box
+        range = Interval(low.value, range.upper());
+        solver_->set_column_bounds(var, range.lower(), range.upper());
+      }
     }
-    if (low.status == lp::LpStatus::infeasible) return Outcome::empty;
-    if (low.status == lp::LpStatus::bounded && low.value > range.lower()) {
-      if (low.value > range.upper()) return Outcome::empty;  // rigorous bound beyond the box
-      range = Interval(low.value, range.upper());
-      solver_->set_column_bounds(var, range.lower(), range.upper());
-    }
-    if (high_reached[var]) continue;
-    lp::LpBound high = solver_->maximize(var);
-    ++lps_solved_;
-    note_point();
-    if (high.status == lp::LpStatus::infeasible) return Outcome::empty;
-    if (high.status == lp::LpStatus::bounded && high.value < range.upper()) {
-      if (high.value < range.lower()) return Outcome::empty;
-      range = Interval(range.lower(), high.value);
-      solver_->set_column_bounds(var, range.lower(), range.upper());
+    if (!high_reached[var]) {
+      const lp::LpBound high = solver_->maximize(var);
+      solved();
+      if (high.status == lp::LpStatus::infeasible) return Outcome::empty;
+      if (high.status == lp::LpStatus::bounded && high.value < range.upper()) {
+        if (high.value < range.lower()) return Outcome::empty;
+        range = Interval(range.lower(), high.value);
+        solver_->set_column_bounds(var, range.lower(), range.upper());
+      }
     }
   }
 
