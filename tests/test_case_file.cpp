@@ -1,5 +1,6 @@
 #include "interval/rigorous.hpp"
-#include "io/case_file.hpp"
+#include "formulate/load.hpp"
+#include "formulate/spherical.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -9,9 +10,9 @@
 #include <string>
 
 using namespace linkbox;
-using io::CaseError;
-using io::load_case;
-using io::load_case_text;
+using input::InputError;
+using formulate::load_case;
+using formulate::load_case_text;
 
 namespace {
 
@@ -19,13 +20,13 @@ const std::string kSource = LINKBOX_SOURCE_DIR;
 
 bool same(const Interval& a, const Interval& b) { return a.lower() == b.lower() && a.upper() == b.upper(); }
 
-model::System polynomial_system(const io::LoadedCase& c) {
+model::System polynomial_system(const formulate::LoadedCase& c) {
   REQUIRE(c.formulation);
   REQUIRE(c.formulation->kind() == "polynomial");
   return c.formulation->subproblem(0).system;
 }
 
-const formulate::SphericalCase& spherical_case(const io::LoadedCase& c) {
+const input::SphericalCase& spherical_case(const formulate::LoadedCase& c) {
   auto* f = dynamic_cast<const formulate::SphericalFormulation*>(c.formulation.get());
   REQUIRE(f);
   return f->spherical_case();
@@ -92,14 +93,14 @@ const BadCase kBadCases[] = {
 
 }  // namespace
 
-TEST_CASE("case file: every bad input is a CaseError with file and line", "[case_file]") {
+TEST_CASE("case file: every bad input is a InputError with file and line", "[case_file]") {
   for (const BadCase& bad : kBadCases) {
     const std::string path = kSource + "/tests/data/bad/" + bad.file;
     INFO(bad.file);
     try {
       load_case(path);
       FAIL("loaded without error");
-    } catch (const CaseError& e) {
+    } catch (const InputError& e) {
       INFO(e.what());
       CHECK(e.file == path);
       CHECK(e.line == bad.line);
@@ -123,15 +124,15 @@ TEST_CASE("case file: a missing file is reported at line 0", "[case_file]") {
   try {
     load_case(path);
     FAIL("loaded a file that does not exist");
-  } catch (const CaseError& e) {
+  } catch (const InputError& e) {
     CHECK(e.line == 0);
     CHECK(std::string(e.what()) == path + ":0: no such case file");
   }
-  CHECK_THROWS_AS(load_case(kSource + "/tests/data/bad"), CaseError);  // a directory
+  CHECK_THROWS_AS(load_case(kSource + "/tests/data/bad"), InputError);  // a directory
 }
 
 TEST_CASE("case file: circle-line", "[case_file]") {
-  const io::LoadedCase c = load_case(kSource + "/cases/polynomial/circle-line.toml");
+  const formulate::LoadedCase c = load_case(kSource + "/cases/polynomial/circle-line.toml");
   CHECK(c.kind == "polynomial");
   CHECK(c.name == "circle-line");
   const model::System s = polynomial_system(c);
@@ -162,7 +163,7 @@ TEST_CASE("case file: planted-cubic has its planted roots", "[case_file]") {
 
 TEST_CASE("case file: numbers are enclosed as the decimals written", "[case_file]") {
   // The domain line has a 2-byte character before the floats: toml++ columns count code points.
-  const io::LoadedCase c = load_case_text(R"(kind = "polynomial"
+  const formulate::LoadedCase c = load_case_text(R"(kind = "polynomial"
 name = "numbers"
 variables = [
   { name = "x", domain = ["-pi", "pi/2"] },
@@ -186,14 +187,14 @@ equations = [ { name = "é", equation = "x + y + z" } ]
 }
 
 TEST_CASE("case file: floats after multi-byte characters are still recovered", "[case_file]") {
-  const io::LoadedCase c = load_case_text(R"(kind = "spherical"
+  const formulate::LoadedCase c = load_case_text(R"(kind = "spherical"
 name = "unicode"
 joints = ["φ1", "φ2"]
 [[loops]]
 factors = [ { joint = "φ1", axis = [0, 0.0175, 1] }, { joint = "φ2", axis = [1, 0, 0] } ]
 )",
                                           "unicode.toml");
-  const formulate::SphericalCase& sc = spherical_case(c);
+  const input::SphericalCase& sc = spherical_case(c);
   CHECK(same(sc.loops[0].factors[0].axis[1], rigorous::decimal("0.0175")));
   CHECK(sc.loops[0].name == "loop 1");
 }
@@ -216,42 +217,42 @@ factors = [
 name = "R"
 rotation = [ { joint = "phi1", axis = [0, 0, 1] }, { joint = "phi2", axis = [1, 0, 0] } ]
 )";
-  const io::LoadedCase c = load_case_text(text, "wrist.toml");
+  const formulate::LoadedCase c = load_case_text(text, "wrist.toml");
   CHECK(c.kind == "spherical");
   CHECK(c.name == "wrist");
   CHECK(c.file == "wrist.toml");
   CHECK(c.formulation->kind() == "spherical");
-  const formulate::SphericalCase& sc = spherical_case(c);
+  const input::SphericalCase& sc = spherical_case(c);
   CHECK(sc.name == "wrist");
   CHECK(sc.file == "wrist.toml");
   REQUIRE(sc.joints.size() == 3);
   CHECK(sc.joints[2].name == "phi3");
   CHECK(sc.joints[2].line == 3);
   REQUIRE(sc.loops.size() == 1);
-  const formulate::Loop& loop = sc.loops[0];
+  const input::Loop& loop = sc.loops[0];
   CHECK(loop.name == "wrist");
   CHECK(loop.line == 4);
   REQUIRE(loop.factors.size() == 6);
-  using Kind = formulate::Factor::Kind;
+  using Kind = input::Factor::Kind;
 
-  const formulate::Factor& f0 = loop.factors[0];
+  const input::Factor& f0 = loop.factors[0];
   CHECK(f0.kind == Kind::joint);
   CHECK(f0.joint == 0);
   CHECK(f0.line == 7);
   CHECK(same(f0.axis[2], Interval(1.0)));
 
-  const formulate::Factor& f1 = loop.factors[1];
+  const input::Factor& f1 = loop.factors[1];
   CHECK(f1.kind == Kind::fixed_rotation);
   CHECK(same(f1.angle, rigorous::pi() / Interval(2.0)));
 
-  const formulate::Factor& f2 = loop.factors[2];  // inverse joint: axis negated
+  const input::Factor& f2 = loop.factors[2];  // inverse joint: axis negated
   CHECK(f2.joint == 1);
   CHECK(same(f2.axis[2], Interval(-2.0)));
 
-  const formulate::Factor& f3 = loop.factors[3];  // inverse fixed rotation: angle negated
+  const input::Factor& f3 = loop.factors[3];  // inverse fixed rotation: angle negated
   CHECK(same(f3.angle, -rigorous::decimal("0.0175")));
 
-  const formulate::Factor& f5 = loop.factors[5];  // inverse constant: conjugate
+  const input::Factor& f5 = loop.factors[5];  // inverse constant: conjugate
   CHECK(f5.kind == Kind::constant);
   CHECK(f5.line == 12);
   CHECK(same(f5.q[0], rigorous::decimal("0.0196")));
@@ -267,7 +268,7 @@ rotation = [ { joint = "phi1", axis = [0, 0, 1] }, { joint = "phi2", axis = [1, 
   // Without the source text (a caller that parsed the TOML itself) floats are widened by an
   // ulp each side of toml++'s double, which still contains the decimal.
   const toml::table root = toml::parse(text);
-  const formulate::SphericalCase direct = io::load_spherical(root, "wrist.toml");
+  const input::SphericalCase direct = input::read_spherical(root, "wrist.toml");
   const Interval angle = -direct.loops[0].factors[3].angle;
   CHECK(angle.lower() <= rigorous::decimal("0.0175").lower());
   CHECK(angle.upper() >= rigorous::decimal("0.0175").upper());
@@ -280,7 +281,7 @@ name = "p"
 variables = [ { name = "x", domain = [0, 1] } ]
 equations = [ "x - 0.5" ]
 )");
-  const model::System s = io::load_polynomial(root, "p.toml");
+  const model::System s = input::read_polynomial(root, "p.toml");
   REQUIRE(s.equations.size() == 1);
   CHECK(same(s.equations[0].constant_term(), Interval(-0.5)));
   CHECK(s.equation_names == std::vector<std::string>{""});

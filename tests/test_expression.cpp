@@ -1,13 +1,13 @@
 #include "interval/rigorous.hpp"
-#include "io/expression.hpp"
+#include "input/expression.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <string>
 
 using namespace linkbox;
-using io::parse_constant;
-using io::parse_polynomial;
+using input::parse_constant;
+using input::parse_polynomial;
 using model::Polynomial;
 
 namespace {
@@ -28,7 +28,7 @@ Interval coefficient(const Polynomial& p, const model::Powers& powers) {
 int error_column(const std::string& text, const std::vector<std::string>& vars = kXY) {
   try {
     parse_polynomial(text, vars);
-  } catch (const io::ParseError& e) {
+  } catch (const input::ParseError& e) {
     return e.column;
   }
   return -1;
@@ -37,7 +37,7 @@ int error_column(const std::string& text, const std::vector<std::string>& vars =
 std::string error_message(const std::string& text, const std::vector<std::string>& vars = kXY) {
   try {
     parse_polynomial(text, vars);
-  } catch (const io::ParseError& e) {
+  } catch (const input::ParseError& e) {
     return e.what();
   }
   return "";
@@ -181,16 +181,16 @@ TEST_CASE("expression: hostile inputs fail cleanly", "[expression]") {
   CHECK(error_message("(x + y + 1)^1000 * (x - y + 3)^1000").find("too many terms") != std::string::npos);
   CHECK(error_column(std::string("x\0y", 3)) == 1);
   CHECK(error_column("x + \xC3\xA9") == 4);
-  CHECK_THROWS_AS(parse_constant("x"), io::ParseError);
+  CHECK_THROWS_AS(parse_constant("x"), input::ParseError);
 }
 
 TEST_CASE("expression: variable names usable in equations", "[expression]") {
-  CHECK(io::is_valid_variable_name("t_1"));
-  CHECK(io::is_valid_variable_name("_a"));
-  CHECK_FALSE(io::is_valid_variable_name("1t"));
-  CHECK_FALSE(io::is_valid_variable_name("a b"));
-  CHECK_FALSE(io::is_valid_variable_name("pi"));
-  CHECK_FALSE(io::is_valid_variable_name("sin"));
-  CHECK_FALSE(io::is_valid_variable_name("nan"));
-  CHECK_FALSE(io::is_valid_variable_name(""));
+  CHECK(input::is_valid_variable_name("t_1"));
+  CHECK(input::is_valid_variable_name("_a"));
+  CHECK_FALSE(input::is_valid_variable_name("1t"));
+  CHECK_FALSE(input::is_valid_variable_name("a b"));
+  CHECK_FALSE(input::is_valid_variable_name("pi"));
+  CHECK_FALSE(input::is_valid_variable_name("sin"));
+  CHECK_FALSE(input::is_valid_variable_name("nan"));
+  CHECK_FALSE(input::is_valid_variable_name(""));
 }

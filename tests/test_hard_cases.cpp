@@ -5,8 +5,8 @@
 // reported as certified isolated roots. Known library defects, when there are any, are pinned
 // by tests tagged [!mayfail] (see papers/compare/hard_cases.md): they report but do not fail
 // the run.
-#include "io/case_file.hpp"
-#include "prune/strategy.hpp"
+#include "formulate/load.hpp"
+#include "solve/strategy.hpp"
 #include "solve/solve_case.hpp"
 #include "verify/certify_case.hpp"
 
@@ -27,19 +27,19 @@ using namespace linkbox;
 namespace {
 
 struct Run {
-  io::LoadedCase c;
+  formulate::LoadedCase c;
   solve::CaseResult r;
   verify::VerifyReport v;
   std::vector<Box> outputs;  // every solution box in the output variables
 };
 
 Run run_case(const std::string& path, const std::string& prune, double sigma, bool rigorous = true) {
-  Run s{io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + path), {}, {}, {}};
+  Run s{formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + path), {}, {}, {}};
   solve::RunOptions o;
   o.progress = false;
   o.params.sigma = sigma;
-  o.strategy.contractors = prune::parse_strategy_list(prune);
-  o.strategy.rigorous = rigorous;
+  o.strategy.contractors = solve::parse_strategy_list(prune);
+  o.strategy.arith = rigorous ? Arith::verified : Arith::float_unverified;
   s.r = solve::solve_case(*s.c.formulation, o);
   s.v = verify::verify_case(*s.c.formulation, s.r);
   for (auto& sub : s.r.subproblems)
@@ -246,7 +246,7 @@ TEST_CASE("hard: a 6R loop with a 1e-7 twist encloses its known configuration", 
 }
 
 TEST_CASE("hard: a 6R loop with a 1e-7 twist stays honest when stopped early", "[hard][linkage]") {
-  io::LoadedCase c = io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/hard/linkage-twist-1e-7.toml");
+  formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/hard/linkage-twist-1e-7.toml");
   solve::RunOptions o;
   o.progress = false;
   o.params.sigma = 1e-1;
@@ -299,13 +299,13 @@ TEST_CASE("hard: gimbal lock is reported as a curve cluster", "[hard]") {
     if (c.status != verify::ClusterStatus::curve) continue;
     CHECK(2 * static_cast<size_t>(c.crossings_certified) >= c.crossings.size());
     for (auto& x : c.crossings) {
-      if (x.certificate.status != verify::Status::certified) continue;
+      if (x.certificate.status != newton::Status::certified) continue;
       charts.insert(x.chart);
       // Re-checks in its own chart, and is a point of the circle phi2 = 0, phi1 + phi3 = 0.7.
       auto eqs = s.c.formulation->natural_system(x.chart).equations;
       REQUIRE(x.dropped_equations.size() == 1);
       eqs.erase(eqs.begin() + x.dropped_equations[0]);
-      CHECK(verify::recheck(eqs, x.certificate));
+      CHECK(newton::recheck(eqs, x.certificate));
       const Box point = s.c.formulation->natural_to_output(x.chart, x.certificate.box);
       CHECK(max_width(point) < 1e-9);
       const double phi1 = median(point[0]);

@@ -2,7 +2,7 @@
 // -ffp-contract=off, set by CMake for this file too): every enclosure below is checked against
 // exact rationals (GMP) or directed-rounding MPFR at 128/256 bits, never against doubles.
 // Operands go through `opaque` so the compiler cannot fold the arithmetic at compile time
-// (the -O3 failure in DESIGN.md was exactly such a fold); a second copy uses literals.
+// (the -O3 failure in lib/README.md was exactly such a fold); a second copy uses literals.
 #include "interval/interval.hpp"
 #include "interval/rigorous.hpp"
 

@@ -6,10 +6,10 @@
 #include "formulate/linkage.hpp"
 #include "formulate/to_lph.hpp"
 #include "interval/rigorous.hpp"
-#include "io/linkage_file.hpp"
-#include "io/result_json.hpp"
-#include "io/toml_reader.hpp"
-#include "io/verify_json.hpp"
+#include "input/linkage_file.hpp"
+#include "report/json.hpp"
+#include "input/toml_reader.hpp"
+#include "verify/check.hpp"
 #include "solve/solve_case.hpp"
 #include "tests/box_file.hpp"
 #include "verify/certify_case.hpp"
@@ -29,6 +29,7 @@
 
 using namespace linkbox;
 using namespace linkbox::formulate;
+using namespace linkbox::input;
 
 namespace {
 
@@ -253,12 +254,12 @@ std::vector<Line> random_lines(std::mt19937& rng, int n, double meet_probability
   return lines;
 }
 
-formulate::LinkageCase load_file(const std::string& path) {
+input::LinkageCase load_file(const std::string& path) {
   std::ifstream in(path);
   REQUIRE(in);
   const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   const toml::table root = toml::parse(text, path);
-  return io::load_linkage(root, path, text);
+  return input::read_linkage(root, path, text);
 }
 
 std::string case_path(const std::string& name) { return std::string(LINKBOX_SOURCE_DIR) + "/cases/linkages/" + name; }
@@ -567,10 +568,9 @@ TEST_CASE("malformed linkage files are rejected at the offending line", "[linkag
     const std::string fragment = first.substr(colon + 2);
     try {
       const toml::table root = toml::parse(text, path);
-      const io::TomlReader reader(path, text);
-      io::linkage_formulation(root, reader);
+      formulate::LinkageFormulation(input::read_linkage(root, path, text));
       FAIL("accepted");
-    } catch (const io::CaseError& e) {
+    } catch (const input::InputError& e) {
       INFO(e.what());
       CHECK(e.line == line);
       CHECK(e.message.find(fragment) != std::string::npos);
@@ -586,10 +586,11 @@ Frame about_z(double angle) { return dh(angle, 0, 0, 0); }
 
 // A solve result holding one solution box, as the search would report it (marked incomplete:
 // no search ran).
-solve::CaseResult one_box(const Box& box) {
+solve::CaseResult one_box(const formulate::Formulation& f, const Box& box) {
   solve::CaseResult r;
   r.subproblems.resize(1);
   r.subproblems[0].solutions.push_back(box);
+  r.subproblems[0].residuals.push_back(model::residual_bound(f.subproblem(0).system.equations, box));
   r.complete = false;
   r.stop_reason = "test";
   return r;
@@ -597,12 +598,12 @@ solve::CaseResult one_box(const Box& box) {
 
 // The JSON of a verified result, and `linkbox check` on it.
 nlohmann::json result_json(const LinkageFormulation& f, const solve::CaseResult& r, const verify::VerifyReport& v) {
-  nlohmann::json j = io::result_json("test", "test.toml", f, solve::RunOptions{}, r);
-  io::add_verification(j, f, v);
+  nlohmann::json j = report::result_json("test", "test.toml", f, solve::RunOptions{}, r);
+  report::add_verification(j, f, v);
   return j;
 }
-io::CheckOutcome check_json(const LinkageFormulation& f, const solve::CaseResult& r, const verify::VerifyReport& v) {
-  return io::check_certificates(result_json(f, r, v), f);
+verify::CheckOutcome check_json(const LinkageFormulation& f, const solve::CaseResult& r, const verify::VerifyReport& v) {
+  return verify::check_certificates(result_json(f, r, v), f);
 }
 
 // Bicyclohexane with both rings in the chair s (w, -w, w, -w, w, -w) and ring 2 turned by
@@ -667,7 +668,7 @@ TEST_CASE("bicyclohexane clusters: a chair-chair pose is consistent, never certi
   const double alpha = 1.23, beta = 1.91;
   const double phi = std::acos((std::cos(beta) - std::cos(alpha) * std::cos(alpha)) / std::pow(std::sin(alpha), 2));
   const Decalin d = decalin(f, 1, -phi);
-  const auto r = one_box(model_point(f, {d.ring1, d.ring2}, identity, 1e-9));
+  const auto r = one_box(f, model_point(f, {d.ring1, d.ring2}, identity, 1e-9));
   const verify::VerifyReport v = verify::verify_case(f, r);
   REQUIRE(v.clusters.size() == 1);
   const verify::ClusterReport& c = v.clusters[0];
@@ -678,25 +679,25 @@ TEST_CASE("bicyclohexane clusters: a chair-chair pose is consistent, never certi
   REQUIRE(c.subsystem.size() == 13);
   std::vector<model::Polynomial> square;
   for (int k : c.subsystem) square.push_back(f.natural_system(c.chart).equations[k]);
-  CHECK(verify::recheck(square, c.certificate));
+  CHECK(newton::recheck(square, c.certificate));
   const nlohmann::json j = result_json(f, r, v);
-  const auto checked = io::check_certificates(j, f);
+  const auto checked = verify::check_certificates(j, f);
   CHECK(checked.failures.empty());
   CHECK(checked.checked == 1);
   // What check re-runs is what was recorded: another subsystem, or the cluster called empty
   // by an equation that contains 0 there, fail.
   nlohmann::json other = j;
   other["clusters"][0]["subsystem"][0] = 13;
-  CHECK(io::check_certificates(other, f).failures.size() == 1);
+  CHECK(verify::check_certificates(other, f).failures.size() == 1);
   nlohmann::json claimed_empty = j;
   claimed_empty["clusters"][0]["status"] = "empty";
   claimed_empty["clusters"][0]["excluding_equation"] = 0;
-  CHECK(io::check_certificates(claimed_empty, f).failures.size() == 1);
+  CHECK(verify::check_certificates(claimed_empty, f).failures.size() == 1);
 
   // One torsion of ring 2 off by 0.01: ring 2 no longer closes, the cluster around it is
   // proved to hold no root.
   const Decalin bad = decalin(f, 1, -phi, 0.01);
-  const auto far = one_box(model_point(f, {bad.ring1, bad.ring2}, identity, 1e-9, false));
+  const auto far = one_box(f, model_point(f, {bad.ring1, bad.ring2}, identity, 1e-9, false));
   const verify::VerifyReport w = verify::verify_case(f, far);
   REQUIRE(w.clusters.size() == 1);
   INFO(w.clusters[0].reason);
@@ -710,7 +711,7 @@ TEST_CASE("bicyclohexane clusters: a chair-chair pose is consistent, never certi
   // every natural equation contains 0 on it, a square subsystem's Newton image misses it.
   const Box kept = test::read_box_file("bicyclohexane-empty-box.txt");
   REQUIRE(kept.size() == f.subproblem(0).system.variables.size());
-  const auto spurious = one_box(kept);
+  const auto spurious = one_box(f, kept);
   const verify::VerifyReport x = verify::verify_case(f, spurious);
   REQUIRE(x.clusters.size() == 1);
   INFO(x.clusters[0].reason);
@@ -764,7 +765,7 @@ TEST_CASE("two rings (6R + 7R, cases/linkages/rings-6-7.toml): square natural sy
   // natural system through both loop blocks and the constraints between them.
   const auto& loops = f.linkage_case().loops;
   const auto ring1 = place_loop(loops[0], theta1, Frame{}), ring2 = place_loop(loops[1], theta2, about_z(turn[0]));
-  const auto r = one_box(model_point(f, {ring1, ring2}, identity, 1e-6));
+  const auto r = one_box(f, model_point(f, {ring1, ring2}, identity, 1e-6));
   const verify::VerifyReport v = verify::verify_case(f, r);
   REQUIRE(v.clusters.size() == 1);
   const verify::ClusterReport& c = v.clusters[0];
@@ -776,7 +777,7 @@ TEST_CASE("two rings (6R + 7R, cases/linkages/rings-6-7.toml): square natural sy
     CHECK(angle_in(c.root[i], median(planted_out[i])));
     CHECK(width(c.root[i]) < 1e-9);
   }
-  CHECK(verify::recheck(f.natural_system(c.chart).equations, c.certificate));
+  CHECK(newton::recheck(f.natural_system(c.chart).equations, c.certificate));
   const auto checked = check_json(f, r, v);
   CHECK(checked.failures.empty());
   CHECK(checked.checked == 1);
@@ -814,7 +815,7 @@ TEST_CASE("loop patterns without a natural system say why, and verification repo
                        "joint per loop is supported");
     const Box box = model_point(f, {e1, e2}, ground_frame(e1, 3), 1e-9);
     check_equations_hold(f.subproblem(0), box);
-    const verify::VerifyReport v = verify::verify_case(f, one_box(box));
+    const verify::VerifyReport v = verify::verify_case(f, one_box(f, box));
     REQUIRE(v.clusters.size() == 1);
     CHECK(v.clusters[0].status == verify::ClusterStatus::unverified);
     CHECK(v.clusters[0].reason == "no natural system to certify in: " + s.missing);

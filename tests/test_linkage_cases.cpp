@@ -1,7 +1,7 @@
 // The iterated-LP pipeline end to end on the paper's linkages, checked against independent
 // computations: the DH forward kinematics in double (loop-closure residual of each root after
 // a float Newton polish) and the cyclohexane chair angle from the bond geometry.
-#include "io/case_file.hpp"
+#include "formulate/load.hpp"
 #include "solve/solve_case.hpp"
 #include "verify/certify_case.hpp"
 #include "verify/cluster.hpp"
@@ -62,7 +62,7 @@ std::string path(const std::string& p) { return std::string(LINKBOX_SOURCE_DIR) 
 }  // namespace
 
 TEST_CASE("rigid 6R: 16 distinct poses, each a loop closure, certified and exact", "[linkage][cases]") {
-  io::LoadedCase c = io::load_case(path("cases/linkages/6r-rigid.toml"));
+  formulate::LoadedCase c = formulate::load_case(path("cases/linkages/6r-rigid.toml"));
   solve::RunOptions o;
   o.progress = false;
   o.strategy.contractors = {"lp"};
@@ -98,7 +98,7 @@ TEST_CASE("rigid 6R: 16 distinct poses, each a loop closure, certified and exact
 }
 
 TEST_CASE("cyclohexane: the chairs are certified roots inside solution boxes, the rest a curve", "[linkage][cases]") {
-  io::LoadedCase c = io::load_case(path("cases/linkages/cyclohexane.toml"));
+  formulate::LoadedCase c = formulate::load_case(path("cases/linkages/cyclohexane.toml"));
   solve::RunOptions o;
   o.progress = false;
   o.strategy.contractors = {"lp"};

@@ -4,7 +4,7 @@
 #include "prune/lp/lph_relaxation.hpp"
 #include "prune/lp/safe_lp.hpp"
 #include "prune/lp_relaxation.hpp"
-#include "io/case_file.hpp"
+#include "formulate/load.hpp"
 #include "tests/box_file.hpp"
 
 #include <catch2/catch.hpp>
@@ -238,7 +238,7 @@ TEST_CASE("safe and exact LP backends contract to the same box", "[lp_relaxation
 // back to the column's own bounds: two thirds of all LPs of that search lost their pruning.
 // The safe bounds must be close to the exact optima.
 TEST_CASE("safe LP bounds match the exact LP on a bicyclohexane relaxation", "[lp_relaxation]") {
-  io::LoadedCase c = io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/linkages/bicyclohexane.toml");
+  formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/linkages/bicyclohexane.toml");
   const formulate::SubProblem sub = c.formulation->subproblem(0);
   REQUIRE(sub.lph);
   const Box box = test::read_box_file("bicyclohexane-clp-box.txt");

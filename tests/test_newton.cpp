@@ -1,14 +1,13 @@
 // Root certification: known simple roots certify in boxes near the rounding limit, double
 // roots and root-free boxes never certify, and certificates re-check from (F, box, C) alone.
 #include "interval/rigorous.hpp"
-#include "verify/newton.hpp"
+#include "newton/certify.hpp"
 
 #include <catch2/catch.hpp>
 
 using linkbox::Box;
 using linkbox::Interval;
 using linkbox::model::Polynomial;
-using namespace linkbox::verify;
 using namespace linkbox::newton;
 
 namespace {

@@ -1,10 +1,10 @@
 // The per-box bounds of the result JSON (residual at the midpoint, distance of a member to its
 // certified root) against what they bound, and `check_certificates` on a curve that winds
 // around a whole turn (gimbal lock), whose crossings are each in their own chart.
-#include "io/case_file.hpp"
-#include "io/result_json.hpp"
-#include "io/verify_json.hpp"
-#include "prune/strategy.hpp"
+#include "formulate/load.hpp"
+#include "report/json.hpp"
+#include "verify/check.hpp"
+#include "solve/strategy.hpp"
 #include "solve/solve_case.hpp"
 #include "verify/certify_case.hpp"
 #include "verify/cluster.hpp"
@@ -22,21 +22,21 @@ using nlohmann::json;
 namespace {
 
 struct Written {
-  io::LoadedCase c;
+  formulate::LoadedCase c;
   verify::VerifyReport v;
   json j;
 };
 
 Written solve_and_write(const std::string& path, double sigma) {
-  Written w{io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + path), {}, {}};
+  Written w{formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + path), {}, {}};
   solve::RunOptions o;
   o.progress = false;
   o.params.sigma = sigma;
-  o.strategy.contractors = prune::parse_strategy_list("trapezoid");
+  o.strategy.contractors = solve::parse_strategy_list("trapezoid");
   const solve::CaseResult r = solve::solve_case(*w.c.formulation, o);
   w.v = verify::verify_case(*w.c.formulation, r);
-  w.j = io::result_json(w.c.name, w.c.file, *w.c.formulation, o, r);
-  io::add_verification(w.j, *w.c.formulation, w.v);
+  w.j = report::result_json(w.c.name, w.c.file, *w.c.formulation, o, r);
+  report::add_verification(w.j, *w.c.formulation, w.v);
   return w;
 }
 
@@ -139,7 +139,7 @@ TEST_CASE("json: check re-runs every gimbal-lock crossing, each in its own chart
   std::set<std::uint64_t> charts;
   for (auto& x : curve["crossings"]) charts.insert(x["chart"].get<std::uint64_t>());
   CHECK(charts.size() >= 2);  // the curve winds around a whole turn
-  const io::CheckOutcome ok = io::check_certificates(w.j, *w.c.formulation);
+  const verify::CheckOutcome ok = verify::check_certificates(w.j, *w.c.formulation);
   CHECK(ok.failures.empty());
   CHECK(ok.checked == curve["crossings_certified"].get<int>());
   CHECK(ok.checked > 0);

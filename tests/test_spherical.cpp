@@ -9,6 +9,7 @@
 
 using namespace linkbox;
 using namespace linkbox::formulate;
+using namespace linkbox::input;
 
 namespace {
 

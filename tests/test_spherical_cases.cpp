@@ -2,7 +2,7 @@
 // closed-form ZXZ Euler angles for the wrist, a multi-start Newton on the rotation
 // constraints (R v_i) . w_i = 0 for the Agile Eye.
 #include "formulate/spherical.hpp"
-#include "io/case_file.hpp"
+#include "formulate/load.hpp"
 #include "solve/solve_case.hpp"
 
 #include <catch2/catch.hpp>
@@ -19,12 +19,12 @@ namespace {
 std::string case_path(const std::string& name) { return std::string(LINKBOX_SOURCE_DIR) + "/cases/spherical/" + name; }
 
 struct Solved {
-  io::LoadedCase c;
+  formulate::LoadedCase c;
   solve::CaseResult r;
 };
 
 Solved solve_bundled(const std::string& name) {
-  Solved s{io::load_case(case_path(name)), {}};
+  Solved s{formulate::load_case(case_path(name)), {}};
   solve::RunOptions o;
   o.progress = false;
   s.r = solve::solve_case(*s.c.formulation, o);
@@ -161,7 +161,7 @@ TEST_CASE("agile eye: every forward-kinematics pose is found, the four trivial o
 }
 
 TEST_CASE("search limits return partial results marked incomplete", "[solve]") {
-  io::LoadedCase c = io::load_case(case_path("agile-eye.toml"));
+  formulate::LoadedCase c = formulate::load_case(case_path("agile-eye.toml"));
   solve::RunOptions o;
   o.progress = false;
   o.params.max_boxes = 50;
@@ -172,7 +172,7 @@ TEST_CASE("search limits return partial results marked incomplete", "[solve]") {
 }
 
 TEST_CASE("same case, parameters and threads give the same boxes", "[solve]") {
-  io::LoadedCase c = io::load_case(case_path("agile-eye.toml"));
+  formulate::LoadedCase c = formulate::load_case(case_path("agile-eye.toml"));
   solve::RunOptions o;
   o.progress = false;
   o.threads = 2;

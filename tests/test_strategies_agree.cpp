@@ -1,6 +1,6 @@
 // Every strategy must certify the same roots on the bundled cases: the certified boxes of
 // one strategy each overlap exactly one of another's (angles modulo 2 pi).
-#include "io/case_file.hpp"
+#include "formulate/load.hpp"
 #include "solve/solve_case.hpp"
 #include "verify/certify_case.hpp"
 #include "verify/cluster.hpp"
@@ -11,7 +11,7 @@ using namespace linkbox;
 
 namespace {
 
-std::vector<Box> certified_roots(const io::LoadedCase& c, const std::vector<std::string>& prune) {
+std::vector<Box> certified_roots(const formulate::LoadedCase& c, const std::vector<std::string>& prune) {
   solve::RunOptions o;
   o.progress = false;
   o.strategy.contractors = prune;
@@ -35,7 +35,7 @@ TEST_CASE("strategies agree on the certified roots of the bundled cases", "[stra
       {"cases/polynomial/planted-cubic.toml", {{"hc4"}, {"newton"}, {"hc4", "lp"}}},
   };
   for (auto& [file, strategies] : runs) {
-    io::LoadedCase c = io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + file);
+    formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + file);
     const std::vector<bool> periodic(c.formulation->output_names().size(), c.formulation->outputs_are_angles());
     const auto reference = certified_roots(c, strategies[0]);
     CHECK(!reference.empty());
@@ -53,7 +53,7 @@ TEST_CASE("strategies agree on the certified roots of the bundled cases", "[stra
 }
 
 TEST_CASE("each contractor reports its own work, LPs included", "[strategies]") {
-  io::LoadedCase c = io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/polynomial/planted-cubic.toml");
+  formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/polynomial/planted-cubic.toml");
   solve::RunOptions o;
   o.progress = false;
   o.strategy.contractors = {"hc4", "lp"};

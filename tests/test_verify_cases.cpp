@@ -1,7 +1,7 @@
 // Verification end to end on the bundled spherical cases: every cluster certified, roots
 // pairwise disjoint, the headline exact, and the Agile Eye's trivial poses matching their
 // closed-form rotations.
-#include "io/case_file.hpp"
+#include "formulate/load.hpp"
 #include "solve/solve_case.hpp"
 #include "verify/certify_case.hpp"
 #include "verify/cluster.hpp"
@@ -13,13 +13,13 @@ using namespace linkbox;
 namespace {
 
 struct Verified {
-  io::LoadedCase c;
+  formulate::LoadedCase c;
   solve::CaseResult r;
   verify::VerifyReport v;
 };
 
 Verified verify_bundled(const std::string& path) {
-  Verified s{io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + path), {}, {}};
+  Verified s{formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + path), {}, {}};
   solve::RunOptions o;
   o.progress = false;
   s.r = solve::solve_case(*s.c.formulation, o);
@@ -43,7 +43,7 @@ TEST_CASE("wrist: exactly 2 certified roots, tight boxes", "[verify][cases]") {
   CHECK(s.v.headline == "exactly 2 roots in the domain, each in its certified box");
   for (auto* c : distinct_roots(s.v)) {
     CHECK(max_width(c->certificate.box) < 1e-12);
-    CHECK(verify::recheck(s.c.formulation->natural_system(c->chart).equations, c->certificate));
+    CHECK(newton::recheck(s.c.formulation->natural_system(c->chart).equations, c->certificate));
   }
 }
 

@@ -1,9 +1,9 @@
 // Verification outcomes that must never be over-claimed: a double root, a root on the edge
 // of the domain, a box without roots, roots of overdetermined systems; and the exact
 // statement when everything is proved.
-#include "io/case_file.hpp"
-#include "io/result_json.hpp"
-#include "io/verify_json.hpp"
+#include "formulate/load.hpp"
+#include "report/json.hpp"
+#include "verify/check.hpp"
 #include "solve/solve_case.hpp"
 #include "verify/certify_case.hpp"
 
@@ -15,8 +15,8 @@ using namespace linkbox;
 namespace {
 
 verify::VerifyReport solve_text(const std::string& toml, std::vector<std::string> prune = {"hc4", "newton"},
-                                double sigma = 1e-6, io::CheckOutcome* checked = nullptr) {
-  io::LoadedCase c = io::load_case_text(toml, "inline.toml");
+                                double sigma = 1e-6, verify::CheckOutcome* checked = nullptr) {
+  formulate::LoadedCase c = formulate::load_case_text(toml, "inline.toml");
   solve::RunOptions o;
   o.progress = false;
   o.strategy.contractors = std::move(prune);
@@ -25,9 +25,9 @@ verify::VerifyReport solve_text(const std::string& toml, std::vector<std::string
   REQUIRE(r.complete);
   auto v = verify::verify_case(*c.formulation, r);
   if (checked) {
-    nlohmann::json j = io::result_json(c.name, c.file, *c.formulation, o, r);
-    io::add_verification(j, *c.formulation, v);
-    *checked = io::check_certificates(j, *c.formulation);
+    nlohmann::json j = report::result_json(c.name, c.file, *c.formulation, o, r);
+    report::add_verification(j, *c.formulation, v);
+    *checked = verify::check_certificates(j, *c.formulation);
   }
   return v;
 }
@@ -70,7 +70,7 @@ equations = [ "x^2 + y^2 - 1", "y" ])");
   for (auto& c : v.clusters)
     if (c.status == verify::ClusterStatus::unverified) {
       CHECK(c.reason.find("domain boundary") != std::string::npos);
-      CHECK(c.certificate.status == verify::Status::certified);  // it exists, just beyond doubt only near the edge
+      CHECK(c.certificate.status == newton::Status::certified);  // it exists, just beyond doubt only near the edge
       ++edge;
     }
   CHECK(edge == 1);
@@ -87,10 +87,10 @@ equations = [ "x^2 + y^2 + 1", "x - y" ])");
 }
 
 TEST_CASE("a polynomial case goes through the L/P/H path (safe and exact LP) and loses no planted root", "[verify][polynomial][lp]") {
-  io::LoadedCase c = io::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/polynomial/planted-cubic.toml");
+  formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/polynomial/planted-cubic.toml");
   const double r[3] = {-1, 0.5, 2};
   const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (const char* backend : {"safe", "exact"}) {
+  for (auto backend : {prune::lp::LpBackend::safe, prune::lp::LpBackend::exact}) {
     solve::RunOptions o;
     o.progress = false;
     o.strategy.contractors = {"lp"};
@@ -103,7 +103,7 @@ TEST_CASE("a polynomial case goes through the L/P/H path (safe and exact LP) and
       for (auto& s : res.subproblems)
         for (auto& b : s.solutions)
           hits += contains(b[0], r[p[0]]) && contains(b[1], r[p[1]]) && contains(b[2], r[p[2]]);
-      INFO(backend);
+      INFO(prune::lp::to_string(backend));
       CHECK(hits >= 1);
     }
     auto v = verify::verify_case(*c.formulation, res);
@@ -113,7 +113,7 @@ TEST_CASE("a polynomial case goes through the L/P/H path (safe and exact LP) and
 }
 
 TEST_CASE("an overdetermined system: its root is a consistent candidate, never certified", "[verify][polynomial]") {
-  io::CheckOutcome checked;
+  verify::CheckOutcome checked;
   auto v = solve_text(R"(kind = "polynomial"
 name = "t"
 variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] } ]
@@ -136,7 +136,7 @@ equations = [ "x + y - 1", "x - y", "x^2 + y^2 - 1/2" ])", {"hc4"}, 1e-6, &check
 TEST_CASE("an overdetermined system with a curve of roots: crossings leave out the extra equations",
           "[verify][polynomial]") {
   // The unit circle in the plane z = 0, written with two more equations than a curve needs.
-  io::CheckOutcome checked;
+  verify::CheckOutcome checked;
   auto v = solve_text(R"(kind = "polynomial"
 name = "t"
 variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] }, { name = "z", domain = [-1, 1] } ]
@@ -147,7 +147,7 @@ equations = [ "x^2 + y^2 - 1", "z", "z*x", "z*y" ])", {"hc4"}, 0.05, &checked);
     if (c.status != verify::ClusterStatus::curve) continue;
     CHECK(2 * static_cast<size_t>(c.crossings_certified) >= c.crossings.size());
     for (auto& x : c.crossings)
-      if (x.certificate.status == verify::Status::certified) CHECK(x.dropped_equations.size() == 2);
+      if (x.certificate.status == newton::Status::certified) CHECK(x.dropped_equations.size() == 2);
   }
   CHECK(checked.failures.empty());
   CHECK(checked.checked >= 1);

@@ -1,7 +1,8 @@
 #include "verify/cluster.hpp"
 
 #include "interval/rigorous.hpp"
-#include "verify/union_find.hpp"
+
+#include <boost/pending/disjoint_sets.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -142,11 +143,26 @@ double farthest_distance(const Box& a, const Box& b, const std::vector<bool>& pe
   return d;
 }
 
+namespace {
+// The sets of `sets` over 0..n-1, each sorted ascending, ordered by their smallest member:
+// independent of the order in which unions happened.
+std::vector<std::vector<int>> groups(boost::disjoint_sets_with_storage<>& sets, int n) {
+  std::vector<int> slot(n, -1);
+  std::vector<std::vector<int>> out;
+  for (int i = 0; i < n; ++i) {
+    const int r = sets.find_set(i);
+    if (slot[r] < 0) slot[r] = static_cast<int>(out.size()), out.emplace_back();
+    out[slot[r]].push_back(i);
+  }
+  return out;
+}
+}  // namespace
+
 std::vector<std::vector<int>> cluster_boxes(const std::vector<Box>& boxes,
                                             const std::vector<bool>& periodic) {
   const int n = static_cast<int>(boxes.size());
-  UnionFind sets(n);
   if (n == 0) return {};
+  boost::disjoint_sets_with_storage<> sets(n);
   const size_t dim = boxes[0].size();
   for (auto& b : boxes)
     if (b.size() != dim) throw std::invalid_argument("cluster_boxes: boxes of different dimensions");
@@ -158,13 +174,13 @@ std::vector<std::vector<int>> cluster_boxes(const std::vector<Box>& boxes,
     if (!has_nan(boxes[i])) ids.push_back(i);
 
   auto join = [&](int a, int b) {
-    if (a != b && sets.find(a) != sets.find(b) && boxes_touch(boxes[a], boxes[b], periodic))
-      sets.unite(a, b);
+    if (a != b && sets.find_set(a) != sets.find_set(b) && boxes_touch(boxes[a], boxes[b], periodic))
+      sets.union_set(a, b);
   };
 
   if (dim == 0) {
     for (size_t k = 1; k < ids.size(); ++k) join(ids[0], ids[k]);
-    return sets.groups();
+    return groups(sets, n);
   }
 
   // Sweep along the dimension where the fewest boxes overlap in projection.
@@ -188,7 +204,7 @@ std::vector<std::vector<int>> cluster_boxes(const std::vector<Box>& boxes,
     active.resize(kept);
     active.push_back(e);
   }
-  return sets.groups();
+  return groups(sets, n);
 }
 
 }  // namespace linkbox::verify

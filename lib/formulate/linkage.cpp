@@ -1,6 +1,8 @@
 #include "formulate/linkage.hpp"
 
+#include "formulate/linear_elimination.hpp"
 #include "formulate/to_lph.hpp"
+#include "model/vector_algebra.hpp"
 #include "interval/rigorous.hpp"
 
 #include <algorithm>
@@ -16,9 +18,6 @@ namespace linkbox::formulate {
 
 using model::Polynomial;
 
-LinkageError::LinkageError(const std::string& file, int line, const std::string& message)
-    : std::invalid_argument(file + ":" + std::to_string(line) + ": " + message), line(line), message(message) {}
-
 std::string to_string(const ModelSize& s) {
   return std::to_string(s.primary) + " primary + " + std::to_string(s.dummy) + " dummy; " +
          std::to_string(s.linear) + " L, " + std::to_string(s.parabolic) + " P, " + std::to_string(s.hyperbolic) +
@@ -29,169 +28,24 @@ std::ostream& operator<<(std::ostream& os, const ModelSize& s) { return os << to
 
 namespace {
 
-bool same(const Interval& x, const Interval& y) { return x.lower() == y.lower() && x.upper() == y.upper(); }
 bool is_exact_zero(const Interval& x) { return x.lower() == 0 && x.upper() == 0; }
-std::string quote(const std::string& s) { return "'" + s + "'"; }
-std::string at_line(int line) { return " (line " + std::to_string(line) + ")"; }
 
-// Smallest-index representative, with path halving.
-int find(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
+using VecP = model::Vec3<Polynomial>;
+using Vec3 = model::Vec3<Interval>;
+using model::cross;
+using model::dot;
 
-}  // namespace
-
-// What a case must satisfy before it is modelled:
-//  - at least one loop, unique loop names, at least 3 links per loop, non-empty names;
-//  - a loop passes each joint and each link at most once;
-//  - a joint joins the same two links, in the same direction, in every loop through it (its
-//    axis d is one vector), and has the same type (and for a prismatic joint the same theta
-//    and range) everywhere;
-//  - a link seen between the same two joints in several loops has the same a and alpha there,
-//    and a link in several loops keeps one of its joints in all of them (otherwise nothing in
-//    the vector model would tie the two appearances together);
-//  - parameters finite, prismatic ranges non-empty;
-//  - the ground link exists; angle constraints name two different known joints;
-//  - every loop is tied to the ground's loops through shared joints or angle constraints
-//    (a loop tied to nothing could turn freely as a whole).
-void validate(const LinkageCase& c) {
-  auto fail = [&](int line, const std::string& m) { throw LinkageError(c.file, line, m); };
-  if (c.loops.empty()) fail(0, "no loops");
-
-  struct JointUse {
-    const LinkageLoop* loop;
-    const LoopLink* entry;
-    std::string prev, next;
-  };
-  struct LinkUse {
-    const LinkageLoop* loop;
-    const LoopLink* entry;
-    std::string in, out;
-  };
-  std::map<std::string, int> loop_lines;
-  std::map<std::string, JointUse> joints;
-  std::map<std::string, LinkUse> links;
-  std::map<std::tuple<std::string, std::string, std::string>, const LoopLink*> normals;
-  std::map<std::string, std::vector<int>> loops_of_joint;
-  std::map<std::string, int> loop_of_link;  // first loop through each link
-
-  for (size_t l = 0; l < c.loops.size(); ++l) {
-    const LinkageLoop& loop = c.loops[l];
-    if (loop.name.empty()) fail(loop.line, "empty loop name");
-    if (auto [it, fresh] = loop_lines.emplace(loop.name, loop.line); !fresh)
-      fail(loop.line, "duplicate loop name " + quote(loop.name) + " (first declared on line " +
-                          std::to_string(it->second) + ")");
-    const size_t n = loop.links.size();
-    if (n < 3)
-      fail(loop.line, "loop " + quote(loop.name) + " has " + std::to_string(n) +
-                          " link(s); a loop needs at least 3 (joints and links alternate around it)");
-    std::map<std::string, int> joints_here, links_here;
-    for (const LoopLink& e : loop.links) {
-      if (e.link.empty()) fail(e.line, "empty link name");
-      if (e.joint.empty()) fail(e.line, "empty joint name");
-      if (auto [it, fresh] = joints_here.emplace(e.joint, e.line); !fresh)
-        fail(e.line, "joint " + quote(e.joint) + " appears twice in loop " + quote(loop.name) + " (also on line " +
-                         std::to_string(it->second) + "): a loop passes each joint once");
-      if (auto [it, fresh] = links_here.emplace(e.link, e.line); !fresh)
-        fail(e.line, "link " + quote(e.link) + " appears twice in loop " + quote(loop.name) + " (also on line " +
-                         std::to_string(it->second) + "): a loop passes each link once");
-      for (const Interval* v : {&e.a, &e.alpha, &e.d})
-        if (!is_finite(*v)) fail(e.line, "parameter of link " + quote(e.link) + " is not finite");
-      if (e.prismatic && !is_finite(e.theta)) fail(e.line, "theta of joint " + quote(e.joint) + " is not finite");
-      if (e.prismatic && !(e.d.lower() <= e.d.upper()))
-        fail(e.line, "empty range of the offset d of prismatic joint " + quote(e.joint));
-    }
-    for (size_t i = 0; i < n; ++i) {
-      const LoopLink& e = loop.links[i];
-      const std::string& prev = loop.links[(i + n - 1) % n].link;
-      const std::string& next_joint = loop.links[(i + 1) % n].joint;
-      loops_of_joint[e.joint].push_back(static_cast<int>(l));
-      loop_of_link.emplace(e.link, static_cast<int>(l));
-
-      if (auto [it, fresh] = joints.emplace(e.joint, JointUse{&loop, &e, prev, e.link}); !fresh) {
-        const JointUse& u = it->second;
-        const std::string there = " in loop " + quote(u.loop->name) + at_line(u.entry->line);
-        if (u.entry->prismatic != e.prismatic)
-          fail(e.line, "joint " + quote(e.joint) + " is " + (e.prismatic ? "prismatic" : "revolute") + " here but " +
-                           (u.entry->prismatic ? "prismatic" : "revolute") + there);
-        if (u.prev != prev || u.next != e.link)
-          fail(e.line, "joint " + quote(e.joint) + " joins links " + quote(prev) + " -> " + quote(e.link) +
-                           " here but " + quote(u.prev) + " -> " + quote(u.next) + there +
-                           ": a joint joins the same two links in every loop, passed in the same direction");
-        if (e.prismatic && (!same(e.theta, u.entry->theta) || !same(e.d, u.entry->d)))
-          fail(e.line, "prismatic joint " + quote(e.joint) + " has another theta or range than" + there);
-      }
-      if (auto [it, fresh] = links.emplace(e.link, LinkUse{&loop, &e, e.joint, next_joint}); !fresh) {
-        const LinkUse& u = it->second;
-        if (u.in != e.joint && u.out != next_joint)
-          fail(e.line, "link " + quote(e.link) + " runs from joint " + quote(e.joint) + " to " + quote(next_joint) +
-                           " here but from " + quote(u.in) + " to " + quote(u.out) + " in loop " +
-                           quote(u.loop->name) + at_line(u.entry->line) +
-                           ": a link shared by loops must keep one of its joints in all of them");
-      }
-      if (auto [it, fresh] = normals.emplace(std::make_tuple(e.joint, e.link, next_joint), &e); !fresh) {
-        const LoopLink& u = *it->second;
-        if (!same(u.a, e.a) || !same(u.alpha, e.alpha))
-          fail(e.line, "link " + quote(e.link) + " between joints " + quote(e.joint) + " and " + quote(next_joint) +
-                           " has other a or alpha than on line " + std::to_string(u.line));
-      }
-    }
-  }
-
-  if (c.ground.empty()) fail(c.ground_line, "no ground link");
-  auto ground = loop_of_link.find(c.ground);
-  if (ground == loop_of_link.end()) fail(c.ground_line, "unknown ground link " + quote(c.ground) + " (in no loop)");
-
-  std::vector<int> parent(c.loops.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto unite = [&](int a, int b) { parent[find(parent, a)] = find(parent, b); };
-  for (auto& [joint, loops] : loops_of_joint)
-    for (int l : loops) unite(l, loops.front());
-
-  std::map<std::string, int> constraint_lines;
-  for (const AngleConstraint& a : c.angle_constraints) {
-    if (!a.name.empty())
-      if (auto [it, fresh] = constraint_lines.emplace(a.name, a.line); !fresh)
-        fail(a.line, "duplicate angle constraint name " + quote(a.name) + " (first declared on line " +
-                         std::to_string(it->second) + ")");
-    for (const std::string* j : {&a.joint1, &a.joint2})
-      if (!joints.count(*j)) fail(a.line, "angle constraint names unknown joint " + quote(*j));
-    if (a.joint1 == a.joint2) fail(a.line, "angle constraint between joint " + quote(a.joint1) + " and itself");
-    if (!is_finite(a.angle)) fail(a.line, "angle constraint angle is not finite");
-    unite(loops_of_joint[a.joint1].front(), loops_of_joint[a.joint2].front());
-  }
-  for (size_t l = 0; l < c.loops.size(); ++l)
-    if (find(parent, static_cast<int>(l)) != find(parent, ground->second))
-      fail(c.loops[l].line, "loop " + quote(c.loops[l].name) + " is not tied to the ground link " + quote(c.ground) +
-                                ": it shares no joint (nor an angle constraint) with the loops through it, so it "
-                                "could turn freely as a whole");
-}
-
-namespace {
-
-using VecP = std::array<Polynomial, 3>;
-
-Polynomial dot(const VecP& u, const VecP& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
-VecP cross(const VecP& u, const VecP& v) {
-  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-}
 VecP constant_vector(const Interval& x, const Interval& y, const Interval& z) {
   return {Polynomial::constant(x), Polynomial::constant(y), Polynomial::constant(z)};
 }
 
-using Vec3 = std::array<Interval, 3>;
-Interval dot(const Vec3& u, const Vec3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
-Vec3 cross(const Vec3& u, const Vec3& v) {
-  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-}
-
 Polynomial renumber(const Polynomial& p, const std::vector<int>& index) {
   Polynomial r;
-  for (auto& [powers, c] : p.terms()) {
-    Polynomial mono = Polynomial::constant(c);
-    for (auto [v, e] : powers) mono = mono * Polynomial::variable(index[v]).pow(e);
-    r += mono;
+  for (auto& [original, c] : p.terms()) {
+    model::Powers powers = original;
+    for (auto& [v, e] : powers) v = index[v];
+    std::sort(powers.begin(), powers.end());
+    r += Polynomial::monomial(powers, c);
   }
   return r;
 }
@@ -203,113 +57,11 @@ Interval angle(const Interval& y, const Interval& x) {
   return rigorous::atan2(y, x);
 }
 
-struct Eq {
-  Polynomial p;
-  std::string name;
-  int line;
-};
-
-// x = offset + scale * v[variable], or x = offset when variable < 0.
-struct Affine {
-  int variable = -1;
-  Interval scale{1.0}, offset{0.0};
-};
-
-// p with variable `var` replaced by the polynomial r.
-Polynomial substitute(const Polynomial& p, int var, const Polynomial& r) {
-  Polynomial out;
-  for (auto& [powers, c] : p.terms()) {
-    Polynomial term = Polynomial::constant(c);
-    for (auto [v, e] : powers) term = term * (v == var ? r.pow(e) : Polynomial::variable(v).pow(e));
-    out += term;
-  }
-  return out;
-}
-
-size_t nonlinear_monomials(const std::vector<Eq>& eqs) {
-  std::set<model::Powers> m;
-  for (auto& eq : eqs)
-    for (auto& [powers, c] : eq.p.terms()) {
-      int degree = 0;
-      for (auto [v, e] : powers) degree += e;
-      if (degree >= 2) m.insert(powers);
-    }
-  return m.size();
-}
-
-// Eliminates variables through linear equations, until none applies:
-//  - c x + k = 0 fixes x (always: the ground makes e.g. d_{g+2}.z = cos(alpha_{g+1}) one);
-//  - c x + c' y + k = 0 gives x = -(k + c' y) / c, substituted when that does not add
-//    products or squares (so the L/P/H model loses a variable and gains no dummy); x is the
-//    one with the larger coefficient, so nothing is multiplied up, and y keeps to the values
-//    that put x in its domain.
-// The defining equation is consumed. With interval coefficients the substituted system
-// contains every system with coefficients in the intervals: nothing is lost. Returns, per
-// variable, what it became (itself when kept).
-std::vector<Affine> eliminate_linear(std::vector<Eq>& eqs, std::vector<model::Variable>& vars, const std::string& file) {
-  std::vector<Affine> as(vars.size());
-  for (size_t v = 0; v < vars.size(); ++v) as[v].variable = static_cast<int>(v);
-  auto eliminate = [&](size_t k, int x, const Interval& offset, int y, const Interval& scale) {
-    const Polynomial r = y < 0 ? Polynomial::constant(offset)
-                               : Polynomial::constant(offset) + Polynomial::variable(y) * scale;
-    eqs.erase(eqs.begin() + k);
-    for (auto& eq : eqs) eq.p = substitute(eq.p, x, r);
-    for (auto& a : as)
-      if (a.variable == x) a = y < 0 ? Affine{-1, Interval(1.0), a.offset + a.scale * offset}
-                                     : Affine{y, a.scale * scale, a.offset + a.scale * offset};
-  };
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (size_t k = 0; k < eqs.size() && !changed; ++k) {
-      const Eq& eq = eqs[k];
-      if (eq.p.total_degree() != 1) continue;
-      const std::vector<int> v = eq.p.variables();
-      if (v.size() > 2) continue;
-      auto coef = [&](int var) { return eq.p.terms().at(model::Powers{{var, 1}}); };
-      const Interval k0 = eq.p.constant_term();
-      if (v.size() == 1) {
-        const Interval c = coef(v[0]);
-        if (zero_in(c)) continue;
-        Interval x = -k0 / c;
-        if (!intersect(x, vars[v[0]].domain, x))
-          throw LinkageError(file, eq.line,
-                             "the linkage cannot be assembled: '" + eq.name + "' puts " + vars[v[0]].name +
-                                 " outside its range");
-        eliminate(k, v[0], x, -1, Interval(0.0));
-        changed = true;
-        continue;
-      }
-      const bool first = norm(coef(v[0])) >= norm(coef(v[1]));
-      const int x = first ? v[0] : v[1], y = first ? v[1] : v[0];
-      const Interval cx = coef(x), cy = coef(y);
-      if (zero_in(cx)) continue;
-      const Interval offset = -k0 / cx, scale = -cy / cx;
-      std::vector<Eq> trial = eqs;
-      trial.erase(trial.begin() + k);
-      const size_t before = nonlinear_monomials(trial);
-      const Polynomial r = Polynomial::constant(offset) + Polynomial::variable(y) * scale;
-      for (auto& t : trial) t.p = substitute(t.p, x, r);
-      if (nonlinear_monomials(trial) > before) continue;
-      // y only where x = offset + scale y lies in x's domain.
-      if (!zero_in(scale)) {
-        const Interval allowed = (vars[x].domain - offset) / scale;
-        if (!intersect(vars[y].domain, allowed, vars[y].domain))
-          throw LinkageError(file, eq.line,
-                             "the linkage cannot be assembled: '" + eq.name + "' puts " + vars[x].name +
-                                 " outside its range");
-      }
-      eliminate(k, x, offset, y, scale);
-      changed = true;
-    }
-  }
-  return as;
-}
-
 }  // namespace
 
-LinkageFormulation::LinkageFormulation(LinkageCase c, LinkageOptions options)
+LinkageFormulation::LinkageFormulation(input::LinkageCase c, LinkageOptions options)
     : case_(std::move(c)), options_(options) {
-  validate(case_);
+  input::validate(case_);
   index_case();
   ground_frame();
   build_model();
@@ -333,7 +85,7 @@ void LinkageFormulation::index_case() {
     const size_t n = loop.links.size();
     std::vector<int> ids;
     for (size_t i = 0; i < n; ++i) {
-      const LoopLink& e = loop.links[i];
+      const input::LoopLink& e = loop.links[i];
       const int in = joint_index_.at(e.joint), out = joint_index_.at(loop.links[(i + 1) % n].joint);
       auto [it, fresh] = normal_index.emplace(std::make_tuple(in, e.link, out), static_cast<int>(normals_.size()));
       if (fresh) {
@@ -454,7 +206,7 @@ void LinkageFormulation::build_model() {
       vars.push_back({"offset[" + e.joint + "]", e.d});
     }
 
-  std::vector<Eq> eqs;
+  std::vector<NamedEquation> eqs;
   auto add3 = [&](const VecP& v, const std::string& name, int line) {
     for (int k = 0; k < 3; ++k) eqs.push_back({v[k], name + " (" + std::string(axis_name[k] + 1) + ")", line});
   };
@@ -494,7 +246,7 @@ void LinkageFormulation::build_model() {
     const size_t n = loop.links.size();
     VecP sum;
     for (size_t i = 0; i < n; ++i) {
-      const LoopLink& e = loop.links[i];
+      const input::LoopLink& e = loop.links[i];
       const int j = normals_[loop_normals_[l][i]].joint_in;
       const Polynomial length = e.prismatic ? offset[j] : Polynomial::constant(e.d);
       for (int k = 0; k < 3; ++k) {
@@ -523,7 +275,7 @@ void LinkageFormulation::build_model() {
 
   // Drop equations left constant (0 = 0 up to rounding); a non-zero constant is a
   // contradiction already between ground and parameters.
-  std::vector<Eq> kept;
+  std::vector<NamedEquation> kept;
   for (auto& eq : eqs) {
     if (!eq.p.is_constant()) {
       kept.push_back(std::move(eq));
@@ -533,7 +285,7 @@ void LinkageFormulation::build_model() {
     if (!zero_in(k)) {
       std::ostringstream value;
       value << std::setprecision(3) << median(k);
-      throw LinkageError(case_.file, eq.line,
+      throw input::InputError(case_.file, eq.line,
                          "the linkage cannot be assembled: '" + eq.name + "' reduces to " + value.str() +
                              " = 0 (an overconstrained linkage closes only if its parameters satisfy its closure "
                              "condition exactly: write them as exact expressions such as \"pi/3\")");

@@ -13,6 +13,7 @@
 // one variable fixes, or in two variables ties to another without adding products, are
 // substituted, equations left constant are dropped; the rest is lifted to L/P/H (to_lph).
 #include "formulate/formulation.hpp"
+#include "input/linkage_file.hpp"
 
 #include <array>
 #include <iosfwd>
@@ -22,53 +23,6 @@
 #include <vector>
 
 namespace linkbox::formulate {
-
-// Entry i of a loop: joint i (axis d_i), then link i, which runs along the common normal
-// a_i from joint i to joint i+1 (the next entry's joint; the last entry wraps around).
-struct LoopLink {
-  std::string link;
-  std::string joint;
-  bool prismatic = false;
-  Interval a;      // link length along a_i (may be 0: the axes meet)
-  Interval alpha;  // twist: angle from d_i to d_{i+1} about a_i, radians
-  Interval d;      // revolute: offset along d_i from a_{i-1} to a_i; prismatic: its range
-  Interval theta;  // prismatic only: the fixed angle from a_{i-1} to a_i about d_i, radians
-  int line = 0;
-};
-
-struct LinkageLoop {
-  std::string name;
-  std::vector<LoopLink> links;
-  int line = 0;
-};
-
-// d_{joint1} . d_{joint2} = cos(angle): ties axes of different loops (e.g. the third bond of
-// a bridgehead atom in bicyclohexane).
-struct AngleConstraint {
-  std::string name;
-  std::string joint1, joint2;
-  Interval angle;
-  int line = 0;
-};
-
-struct LinkageCase {
-  std::string name;
-  std::string file;    // for messages
-  std::string ground;  // the link whose frame is the world frame
-  int ground_line = 0;
-  std::vector<LinkageLoop> loops;
-  std::vector<AngleConstraint> angle_constraints;
-};
-
-// An invalid linkage; what() is "file:line: message".
-struct LinkageError : std::invalid_argument {
-  int line;
-  std::string message;
-  LinkageError(const std::string& file, int line, const std::string& message);
-};
-
-// Names, topology and parameters (see linkage.cpp); throws LinkageError.
-void validate(const LinkageCase& c);
 
 struct ModelSize {
   int primary = 0, dummy = 0, linear = 0, parabolic = 0, hyperbolic = 0;
@@ -86,9 +40,9 @@ struct LinkageOptions {
 
 class LinkageFormulation final : public Formulation {
  public:
-  // Validates (LinkageError) and builds the model. Also throws LinkageError when the ground
-  // alone contradicts an equation (the linkage cannot be assembled).
-  explicit LinkageFormulation(LinkageCase c, LinkageOptions options = {});
+  // Validates and builds the model; throws input::InputError for an invalid case, and when
+  // the ground alone contradicts an equation (the linkage cannot be assembled).
+  explicit LinkageFormulation(input::LinkageCase c, LinkageOptions options = {});
 
   std::string kind() const override { return "linkage"; }
   size_t subproblem_count() const override { return 1; }
@@ -115,7 +69,7 @@ class LinkageFormulation final : public Formulation {
   Box output_to_natural(std::uint64_t chart, const Box& output) const override;
   Box natural_to_output(std::uint64_t chart, const Box& natural) const override;
 
-  const LinkageCase& linkage_case() const { return case_; }
+  const input::LinkageCase& linkage_case() const { return case_; }
   ModelSize model_size() const;
 
   // Where the model keeps each coordinate of a vector: value + scale * v[variable], v being
@@ -178,11 +132,11 @@ class LinkageFormulation final : public Formulation {
   void plan_natural();  // placements_, turn outputs, unknown_of_entry_, or no_natural_
   std::vector<ChainFactor> frame_chain(int loop, int position) const;
   std::vector<ChainFactor> axis_chain(int joint) const;  // to a frame whose z is the axis
-  model::Polynomial angle_equation(const AngleConstraint& ac, std::uint64_t chart) const;
+  model::Polynomial angle_equation(const input::AngleConstraint& ac, std::uint64_t chart) const;
   std::uint64_t angle_outputs() const;  // bit k: output k is an angle (not an offset)
   std::array<Interval, 3> vector_value(int vector, const Box& box) const;
 
-  LinkageCase case_;
+  input::LinkageCase case_;
   LinkageOptions options_;
   std::vector<std::string> joint_names_;
   std::map<std::string, int> joint_index_;

@@ -180,9 +180,9 @@ std::vector<LinkageFormulation::ChainFactor> LinkageFormulation::axis_chain(int 
   throw std::logic_error("linkage: joint " + joint_names_.at(joint) + " in no placed loop");
 }
 
-Polynomial LinkageFormulation::angle_equation(const AngleConstraint& ac, std::uint64_t chart) const {
+Polynomial LinkageFormulation::angle_equation(const input::AngleConstraint& ac, std::uint64_t chart) const {
   auto factor = [&](const ChainFactor& f) {
-    const LoopLink& e = case_.loops[f.loop].links[f.entry < 0 ? 0 : f.entry];
+    const input::LoopLink& e = case_.loops[f.loop].links[f.entry < 0 ? 0 : f.entry];
     RotationFactor r;
     if (f.kind == ChainFactor::twist) {
       r = rotation_about_x(e.alpha);

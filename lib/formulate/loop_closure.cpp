@@ -5,6 +5,8 @@
 namespace linkbox::formulate {
 
 using model::Polynomial;
+using model::conjugate;
+using model::qmul;
 
 namespace {
 
@@ -18,13 +20,6 @@ std::array<Polynomial, 3> rotate(const QuaternionPolynomial& q, const std::array
 }
 
 }  // namespace
-
-QuaternionPolynomial qmul(const QuaternionPolynomial& a, const QuaternionPolynomial& b) {
-  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1], a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
-}
-
-QuaternionPolynomial conjugate(const QuaternionPolynomial& q) { return {q[0], -q[1], -q[2], -q[3]}; }
 
 RotationFactor rotation_about_z(int variable, std::uint64_t chart) {
   const Polynomial t = Polynomial::variable(variable);
@@ -45,7 +40,7 @@ RotationFactor rotation_about_x(const Interval& alpha) {
           constant(1)};
 }
 
-std::vector<model::Polynomial> dh_loop_closure(const LinkageLoop& loop, const std::vector<int>& variable,
+std::vector<model::Polynomial> dh_loop_closure(const input::LinkageLoop& loop, const std::vector<int>& variable,
                                                std::uint64_t chart) {
   const size_t n = loop.links.size();
   std::vector<RotationFactor> joint(n);
@@ -58,7 +53,7 @@ std::vector<model::Polynomial> dh_loop_closure(const LinkageLoop& loop, const st
   QuaternionPolynomial before{constant(1), Polynomial(), Polynomial(), Polynomial()};  // prod_{j<i} q_j c_j
   std::array<Polynomial, 3> position;
   for (size_t i = 0; i < n; ++i) {
-    const LoopLink& l = loop.links[i];
+    const input::LoopLink& l = loop.links[i];
     // Offset along z_{i-1} (the axis of joint i), rotated by everything before joint i.
     const Polynomial d = l.prismatic ? Polynomial::variable(variable[i]) : Polynomial::constant(l.d);
     if (!d.is_zero()) {

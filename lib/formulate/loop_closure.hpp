@@ -8,6 +8,7 @@
 //   translation: sum_i R_{<i} d_i z + R_{<=i} a_i x, with every rotation written
 //                Q v Q* / |Q|^2 and the sum multiplied by prod_j (1 + t_j^2) > 0.
 #include "formulate/linkage.hpp"
+#include "model/vector_algebra.hpp"
 
 #include <array>
 #include <cstdint>
@@ -16,10 +17,7 @@ namespace linkbox::formulate {
 
 // A quaternion (w, x, y, z) with polynomial entries: a rotation written in half-angle
 // tangents, not normalised (it rotates v to Q v Q* / |Q|^2).
-using QuaternionPolynomial = std::array<model::Polynomial, 4>;
-
-QuaternionPolynomial qmul(const QuaternionPolynomial& a, const QuaternionPolynomial& b);
-QuaternionPolynomial conjugate(const QuaternionPolynomial& q);
+using QuaternionPolynomial = model::Quaternion<model::Polynomial>;
 
 // A factor of a rotation chain and its squared norm |q|^2, kept as the exact polynomial
 // (1 + t^2 or 1) rather than expanded from q, so that dividing by it is exact.
@@ -38,7 +36,7 @@ RotationFactor rotation_about_x(const Interval& alpha);
 // `variable[i]`: the unknown of entry i of the loop: the half-angle tangent of a revolute
 // joint (shifted when bit `variable[i]` of `chart` is set) or the offset of a prismatic one.
 // Returns the 3 rotation equations, then the 3 translation equations.
-std::vector<model::Polynomial> dh_loop_closure(const LinkageLoop& loop, const std::vector<int>& variable,
+std::vector<model::Polynomial> dh_loop_closure(const input::LinkageLoop& loop, const std::vector<int>& variable,
                                                std::uint64_t chart);
 
 }  // namespace linkbox::formulate

@@ -9,11 +9,9 @@ namespace linkbox::formulate {
 
 namespace {
 
-[[noreturn]] void fail(const SphericalCase& c, int line, const std::string& msg) {
-  throw std::invalid_argument(c.file + ":" + std::to_string(line) + ": " + msg);
-}
-
-Quaternion pure(const Vec3& v) { return {Interval(0.0), v[0], v[1], v[2]}; }
+using input::Factor;
+using model::pure;
+using model::qmul;
 
 // Quaternion-valued multi-affine polynomial over the t variables of one loop:
 // terms[mask] is the quaternion coefficient of prod_{j in mask} t_j.
@@ -61,13 +59,6 @@ bool contains_zero_everywhere(const model::Polynomial& p) {
 
 }  // namespace
 
-Quaternion qmul(const Quaternion& a, const Quaternion& b) {
-  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-          a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-          a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
-}
-
 Vec3 normalized(const Vec3& v) {
   Interval n2 = square(v[0]) + square(v[1]) + square(v[2]);
   if (n2.lower() <= 0) throw std::invalid_argument("axis of zero length");
@@ -97,44 +88,8 @@ std::vector<std::vector<Interval>> rotation_matrix(const Quaternion& q) {
   return r;
 }
 
-SphericalFormulation::SphericalFormulation(SphericalCase c) : case_(std::move(c)) {
-  if (case_.loops.empty()) fail(case_, 0, "no loops: nothing to solve");
-  if (case_.joints.empty()) fail(case_, 0, "no joints: nothing to solve");
-  if (case_.joints.size() > 20) fail(case_, case_.joints[0].line, "more than 20 joints (2^r sub-problems)");
-  std::vector<bool> used(case_.joints.size(), false);
-  auto check_factor = [&](const Factor& f) {
-    if (f.kind == Factor::Kind::constant) {
-      bool zero = true;
-      for (auto& v : f.q) zero = zero && v.lower() == 0 && v.upper() == 0;
-      if (zero) fail(case_, f.line, "constant quaternion is zero");
-      return;
-    }
-    try {
-      normalized(f.axis);
-    } catch (const std::invalid_argument&) {
-      fail(case_, f.line, "axis of zero length");
-    }
-    if (f.kind == Factor::Kind::joint && (f.joint < 0 || f.joint >= static_cast<int>(case_.joints.size())))
-      fail(case_, f.line, "joint index out of range");
-  };
-  for (auto& loop : case_.loops) {
-    std::vector<bool> in_loop(case_.joints.size(), false);
-    for (auto& f : loop.factors) {
-      check_factor(f);
-      if (f.kind != Factor::Kind::joint) continue;
-      if (in_loop[f.joint])
-        fail(case_, f.line, "joint '" + case_.joints[f.joint].name + "' appears twice in loop '" + loop.name +
-                                "' (the loop equations would not be multi-affine)");
-      in_loop[f.joint] = used[f.joint] = true;
-    }
-  }
-  for (size_t j = 0; j < used.size(); ++j)
-    if (!used[j]) fail(case_, case_.joints[j].line, "joint '" + case_.joints[j].name + "' is used in no loop");
-  for (auto& out : case_.outputs) {
-    if (out.name == "box" || out.name == "search_box" || out.name == "subproblem" || out.name.empty())
-      fail(case_, out.line, "output name '" + out.name + "' is reserved or empty");
-    for (auto& f : out.factors) check_factor(f);
-  }
+SphericalFormulation::SphericalFormulation(input::SphericalCase c) : case_(std::move(c)) {
+  input::validate(case_);
   for (size_t l = 0; l < case_.loops.size(); ++l) {
     LoopCache c;
     for (auto& f : case_.loops[l].factors)
@@ -156,7 +111,7 @@ std::array<model::Polynomial, 3> SphericalFormulation::loop_equations(size_t loo
 }
 
 std::array<model::Polynomial, 3> SphericalFormulation::expand_loop(size_t loop, size_t shift) const {
-  const Loop& l = case_.loops.at(loop);
+  const input::Loop& l = case_.loops.at(loop);
   std::vector<int> local;  // loop-local bit -> joint index
   for (auto& f : l.factors)
     if (f.kind == Factor::Kind::joint) local.push_back(f.joint);

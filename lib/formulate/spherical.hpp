@@ -3,6 +3,7 @@
 // spherical paper, Sections 2-3). Each loop q_1 ... q_r = 1 with q_i = (1 + t_i p_i) up to
 // scale gives the 3 multi-affine vector-part equations in the half-angle tangents t_i.
 #include "formulate/formulation.hpp"
+#include "input/spherical_file.hpp"
 
 #include <array>
 #include <string>
@@ -10,47 +11,10 @@
 
 namespace linkbox::formulate {
 
-using Vec3 = std::array<Interval, 3>;
-using Quaternion = std::array<Interval, 4>;  // (w, x, y, z)
+using Vec3 = input::Vec3;
+using Quaternion = input::Quaternion;
 
-struct Factor {
-  enum class Kind { joint, fixed_rotation, constant };
-  Kind kind = Kind::joint;
-  Vec3 axis{};          // joint, fixed_rotation: need not be unit (normalised rigorously)
-  int joint = -1;       // joint: index into SphericalCase::joints
-  Interval angle;       // fixed_rotation: radians
-  Quaternion q{};       // constant: any non-zero quaternion (only its direction matters)
-  int line = 0;         // source line, for messages
-};
-
-struct Loop {
-  std::string name;
-  std::vector<Factor> factors;  // product factors[0] * factors[1] * ... = 1
-  int line = 0;
-};
-
-struct Joint {
-  std::string name;
-  int line = 0;
-};
-
-// A declared output: the rotation given by a product of factors (e.g. a platform).
-struct RotationOutput {
-  std::string name;
-  std::vector<Factor> factors;
-  int line = 0;
-};
-
-struct SphericalCase {
-  std::string name;
-  std::string file;
-  std::vector<Joint> joints;
-  std::vector<Loop> loops;
-  std::vector<RotationOutput> outputs;
-};
-
-// Quaternion helpers (interval arithmetic, outward rounded).
-Quaternion qmul(const Quaternion& a, const Quaternion& b);
+// Rotation helpers (interval arithmetic, outward rounded).
 Quaternion axis_angle(const Vec3& axis, const Interval& angle);  // unit quaternion, rigorous
 Vec3 normalized(const Vec3& v);  // throws std::invalid_argument on a zero vector
 // Rotation matrix of a non-zero quaternion (divides by its squared norm).
@@ -58,9 +22,8 @@ std::vector<std::vector<Interval>> rotation_matrix(const Quaternion& q);
 
 class SphericalFormulation final : public Formulation {
  public:
-  // Validates the case (every joint used, no joint twice in one loop, non-zero axes) and
-  // throws std::invalid_argument with "file:line: message" otherwise.
-  explicit SphericalFormulation(SphericalCase c);
+  // Validates the case (input::validate; throws input::InputError).
+  explicit SphericalFormulation(input::SphericalCase c);
   std::string kind() const override { return "spherical"; }
   // 2^r sub-problems: bit j of the index shifts joint j by a half turn.
   size_t subproblem_count() const override { return size_t{1} << case_.joints.size(); }
@@ -78,7 +41,7 @@ class SphericalFormulation final : public Formulation {
     return declared_outputs(chart, natural);
   }
 
-  const SphericalCase& spherical_case() const { return case_; }
+  const input::SphericalCase& spherical_case() const { return case_; }
   // The 3 vector-part polynomials of one loop for a shift mask, over all joints' t variables.
   std::array<model::Polynomial, 3> loop_equations(size_t loop, size_t shift_mask) const;
 
@@ -91,7 +54,7 @@ class SphericalFormulation final : public Formulation {
   };
   std::array<model::Polynomial, 3> expand_loop(size_t loop, size_t shift_mask) const;
 
-  SphericalCase case_;
+  input::SphericalCase case_;
   std::vector<LoopCache> cache_;
 };
 

@@ -24,9 +24,4 @@ model::LphSystem to_lph(const model::System& system, std::vector<model::Polynomi
 // linear equations are named `linear_names[k]` when given; the others after what they define.
 model::System lph_polynomials(const model::LphSystem& lph, const std::vector<std::string>& linear_names = {});
 
-// Completes a box (or point) given on the primary variables with enclosures of the dummies
-// (q = x^2, b = x*y, evaluated in definition order). Entries of dummies are overwritten; a
-// box shorter than the variable list is padded with domains first.
-Box lift(const model::LphSystem& lph, Box box);
-
 }  // namespace linkbox::formulate

@@ -1,7 +1,7 @@
 #pragma once
 // The public interval type: Boost.Interval over double with outward rounding.
 // Protected operations switch the FPU rounding mode per operation (slow, safe anywhere);
-// hot loops use FastInterval inside one RoundingGuard (see DESIGN.md, "Intervals").
+// hot loops use FastInterval inside one RoundingGuard (see lib/README.md, "Decisions").
 #include <boost/numeric/interval.hpp>
 #include <algorithm>
 #include <cmath>
@@ -36,6 +36,27 @@ using Interval =
 // Same arithmetic without per-operation mode switches: only valid while a RoundingGuard lives.
 using FastInterval = bi::unprotect<Interval>::type;
 using RoundingGuard = Interval::traits_type::rounding;
+
+// How pruning computes: `verified` rounds outward (every exclusion proved); `float_unverified`
+// is the same algorithm in round-to-nearest doubles with midpoint coefficients, for
+// comparison only (it can cut roots). One typed switch from the command line to each
+// contractor.
+enum class Arith { verified, float_unverified };
+inline const char* to_string(Arith a) { return a == Arith::verified ? "verified" : "float (UNVERIFIED)"; }
+
+// Runs f() inside one RoundingGuard when verified; FastInterval without the guard rounds to
+// nearest, which is what the float variant means.
+template <class F>
+decltype(auto) with_rounding(Arith arith, F&& f) {
+  if (arith != Arith::verified) return f();
+  RoundingGuard guard;
+  return f();
+}
+
+// The coefficient a contractor uses: the enclosure, or its midpoint in the float variant.
+inline Interval coefficient_for(Arith arith, const Interval& c) {
+  return arith == Arith::verified ? c : Interval(median(c));
+}
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 

@@ -28,11 +28,12 @@ struct LphSystem {
   std::vector<Parabolic> parabolic;
   std::vector<Hyperbolic> hyperbolic;
 
-  Box domain() const {
-    Box b;
-    for (auto& v : variables) b.push_back(v.domain);
-    return b;
-  }
+  Box domain() const;
 };
+
+// Completes a box (or point) given on the primary variables with enclosures of the dummies
+// (q = x^2, b = x*y, evaluated in definition order). Entries of dummies are overwritten; a
+// box shorter than the variable list is padded with domains first.
+Box lift(const LphSystem& lph, Box box);
 
 }  // namespace linkbox::model

@@ -31,6 +31,12 @@ Polynomial Polynomial::variable(int index) {
   return p;
 }
 
+Polynomial Polynomial::monomial(const Powers& powers, const Interval& coefficient) {
+  Polynomial p;
+  p.add_term(powers, coefficient);
+  return p;
+}
+
 bool Polynomial::is_constant() const {
   return terms_.empty() || (terms_.size() == 1 && terms_.begin()->first.empty());
 }

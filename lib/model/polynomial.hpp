@@ -16,6 +16,7 @@ class Polynomial {
   Polynomial() = default;
   static Polynomial constant(const Interval& c);
   static Polynomial variable(int index);
+  static Polynomial monomial(const Powers& powers, const Interval& coefficient);
 
   const std::map<Powers, Interval>& terms() const { return terms_; }
   bool is_zero() const { return terms_.empty(); }

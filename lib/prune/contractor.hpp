@@ -2,6 +2,7 @@
 // One small interface for every pruning strategy: shrink a box without losing any root.
 // A contractor may only answer `empty` when it has *proved* the box holds no root.
 #include "interval/box.hpp"
+#include "prune/counters.hpp"
 
 #include <memory>
 #include <string>
@@ -10,17 +11,6 @@
 namespace linkbox::prune {
 
 enum class Outcome { empty, shrunk, unchanged };
-
-struct Counters {
-  long calls = 0;
-  long emptied = 0;
-  double seconds = 0;
-  double volume_removed = 0;  // sum over calls of (1 - volume ratio) on the split dimensions
-  long lps_solved = 0;        // LP-based contractors: LPs solved (a min or a max each)
-  long lp_iterations = 0;     // and the simplex iterations they took
-
-  Counters& operator+=(const Counters& o);
-};
 
 class Contractor {
  public:

@@ -31,18 +31,16 @@ bool project_power(Interval& x, const FastInterval& p, int e) {
 
 }  // namespace
 
-Hc4::Hc4(const std::vector<model::Polynomial>& equations, bool rigorous) : rigorous_(rigorous) {
+Hc4::Hc4(const std::vector<model::Polynomial>& equations, Arith arith) : arith_(arith) {
   for (auto& e : equations) {
     std::vector<Term> terms;
-    for (auto& [p, c] : e.terms()) terms.push_back({rigorous ? c : Interval(median(c)), p});
+    for (auto& [p, c] : e.terms()) terms.push_back({coefficient_for(arith, c), p});
     equations_.push_back(std::move(terms));
   }
 }
 
 Outcome Hc4::contract(Box& box) {
-  if (!rigorous_) return revise(box);  // FastInterval without the guard rounds to nearest
-  RoundingGuard guard;
-  return revise(box);
+  return with_rounding(arith_, [&] { return revise(box); });
 }
 
 Outcome Hc4::revise(Box& box) {

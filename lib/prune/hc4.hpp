@@ -9,9 +9,9 @@ namespace linkbox::prune {
 
 class Hc4 final : public Contractor {
  public:
-  // rigorous = false: the unverified float variant (midpoint coefficients, nearest rounding).
-  explicit Hc4(const std::vector<model::Polynomial>& equations, bool rigorous = true);
-  std::string name() const override { return rigorous_ ? "hc4" : "hc4-float"; }
+  // Arith::float_unverified: the unverified variant (midpoint coefficients, nearest rounding).
+  explicit Hc4(const std::vector<model::Polynomial>& equations, Arith arith = Arith::verified);
+  std::string name() const override { return arith_ == Arith::verified ? "hc4" : "hc4-float"; }
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override { return std::make_unique<Hc4>(*this); }
 
@@ -22,7 +22,7 @@ class Hc4 final : public Contractor {
   };
   std::vector<std::vector<Term>> equations_;
   std::vector<FastInterval> value_, prefix_, suffix_;  // scratch
-  bool rigorous_ = true;
+  Arith arith_;
   Outcome revise(Box& box);
 };
 

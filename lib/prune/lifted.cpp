@@ -1,6 +1,6 @@
 #include "prune/lifted.hpp"
 
-#include "formulate/to_lph.hpp"
+#include "model/lph.hpp"
 
 namespace linkbox::prune {
 
@@ -8,7 +8,7 @@ Lifted::Lifted(model::LphSystem lph, size_t n, std::unique_ptr<Contractor> inner
     : lph_(std::move(lph)), n_(n), inner_(std::move(inner)) {}
 
 Outcome Lifted::contract(Box& box) {
-  Box lifted = formulate::lift(lph_, Box(box.begin(), box.begin() + n_));
+  Box lifted = model::lift(lph_, Box(box.begin(), box.begin() + n_));
   const Outcome o = inner_->contract(lifted);
   if (o != Outcome::shrunk) return o;
   bool changed = false;

@@ -7,16 +7,23 @@
 namespace linkbox::prune {
 
 namespace {
-newton::SquareSystem make_system(const std::vector<model::Polynomial>& equations, size_t n) {
+newton::SquareSystem make_system(const std::vector<model::Polynomial>& equations, size_t n, Arith arith) {
   if (equations.size() != n)
     throw std::invalid_argument("--prune newton needs a square system; this one has " +
                                 std::to_string(equations.size()) + " equations in " + std::to_string(n) + " variables");
-  return newton::SquareSystem::all_unknown(equations, n);
+  std::vector<model::Polynomial> used;
+  for (auto& p : equations) {
+    model::Polynomial q;
+    for (auto& [powers, c] : p.terms()) q += model::Polynomial::monomial(powers, coefficient_for(arith, c));
+    used.push_back(std::move(q));
+  }
+  return newton::SquareSystem::all_unknown(used, n);
 }
 }  // namespace
 
-IntervalNewton::IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, newton::Method method)
-    : system_(make_system(equations, variables)), method_(method) {}
+IntervalNewton::IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, Arith arith,
+                               newton::Method method)
+    : system_(make_system(equations, variables, arith)), method_(method) {}
 
 Outcome IntervalNewton::contract(Box& box) {
   // Where the Jacobian is singular Newton removes nothing; the plain range test still does.

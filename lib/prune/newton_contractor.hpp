@@ -4,14 +4,15 @@
 // float preconditioner only affects how much is removed: N(X) encloses every root in X
 // for any matrix.
 #include "prune/contractor.hpp"
-#include "prune/newton/interval_newton.hpp"
+#include "newton/interval_newton.hpp"
 
 namespace linkbox::prune {
 
 class IntervalNewton final : public Contractor {
  public:
   // Throws std::invalid_argument unless there are as many equations as variables.
-  IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables,
+  // Arith::float_unverified evaluates with midpoint coefficients (the unverified variant).
+  IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, Arith arith = Arith::verified,
                  newton::Method method = newton::Method::hansen_sengupta);
   std::string name() const override { return "newton"; }
   Outcome contract(Box& box) override;

@@ -28,17 +28,15 @@ bool clip_to_trapezoid(double& lo, double& hi, double min_lo, double max_lo, dou
   return true;
 }
 
-Trapezoid::Trapezoid(const std::vector<model::Polynomial>& equations, bool rigorous) : rigorous_(rigorous) {
-  for (auto& e : equations) equations_.push_back(model::MultiAffine::from(e));
-  if (!rigorous_)
-    for (auto& e : equations_)
-      for (auto& c : e.coef) c = Interval(median(c));
+Trapezoid::Trapezoid(const std::vector<model::Polynomial>& equations, Arith arith) : arith_(arith) {
+  for (auto& e : equations) {
+    equations_.push_back(model::MultiAffine::from(e));
+    for (auto& c : equations_.back().coef) c = coefficient_for(arith, c);
+  }
 }
 
 Outcome Trapezoid::contract(Box& box) {
-  if (!rigorous_) return clip(box);  // FastInterval without the guard rounds to nearest
-  RoundingGuard guard;
-  return clip(box);
+  return with_rounding(arith_, [&] { return clip(box); });
 }
 
 Outcome Trapezoid::clip(Box& box) {

@@ -12,17 +12,17 @@ namespace linkbox::prune {
 class Trapezoid final : public Contractor {
  public:
   // Throws std::invalid_argument if an equation is not multi-affine.
-  // rigorous = false is the unverified float variant (--arith float): midpoint coefficients
+  // Arith::float_unverified is the unverified variant (--arith float): midpoint coefficients
   // and round-to-nearest, so a root can be cut; for comparison only.
-  explicit Trapezoid(const std::vector<model::Polynomial>& equations, bool rigorous = true);
-  std::string name() const override { return rigorous_ ? "trapezoid" : "trapezoid-float"; }
+  explicit Trapezoid(const std::vector<model::Polynomial>& equations, Arith arith = Arith::verified);
+  std::string name() const override { return arith_ == Arith::verified ? "trapezoid" : "trapezoid-float"; }
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override { return std::make_unique<Trapezoid>(*this); }
 
  private:
   std::vector<model::MultiAffine> equations_;
   std::vector<FastInterval> corners_;  // scratch
-  bool rigorous_ = true;
+  Arith arith_;
   Outcome clip(Box& box);
 };
 

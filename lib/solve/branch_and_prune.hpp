@@ -3,6 +3,7 @@
 // shrink a box until it is empty, small (a solution box) or no longer shrinks by more than
 // rho, then bisect its widest split dimension.
 #include "prune/contractor.hpp"
+#include "solve/result.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -19,16 +20,6 @@ struct Params {
   Order order = Order::depth_first;
   double time_limit = 0;  // seconds; 0 = none
   long max_boxes = 0;     // processed boxes over the whole run; 0 = none
-};
-
-struct Stats {
-  long processed = 0;  // boxes taken from the list
-  long empty = 0;
-  long solution = 0;
-  long split = 0;
-  long shrinks = 0;    // contractor passes
-  double seconds = 0;
-  Stats& operator+=(const Stats& o);
 };
 
 // Shared by the sub-problems of one run (and its threads): time and box-count limits.

@@ -67,9 +67,10 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
         if (budget.exhausted()) {
           s.complete = false;
         } else {
-          auto contractor = prune::make_strategy(options.strategy, sub);
+          auto contractor = make_strategy(options.strategy, sub);
           Result r = branch_and_prune(sub.system.domain(), *contractor, sub.split_dims, options.params, budget, inside);
           s.solutions = std::move(r.solutions);
+          for (auto& b : s.solutions) s.residuals.push_back(model::residual_bound(sub.system.equations, b));
           s.stats = r.stats;
           s.complete = r.complete;
           s.counters = contractor->counters();
@@ -98,7 +99,7 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
     for (size_t k = 0; k < s.counters.size(); ++k) result.counters[k] += s.counters[k];
   }
   result.contractor_names = options.strategy.contractors;
-  result.rigorous = options.strategy.rigorous;
+  result.rigorous = options.strategy.arith == Arith::verified;
   if (!result.complete) result.stop_reason = budget.reason();
   result.seconds = budget.elapsed();
   return result;

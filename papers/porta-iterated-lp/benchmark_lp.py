@@ -3,7 +3,7 @@
 two LP backends, `--lp safe` (CLP + Neumaier-Shcherbina bound, the default) and `--lp exact`
 (CGAL's exact QP solver), on the rigid 6R, cyclohexane and mobile 6R, beside CuikSuite's
 reference times (same authors' successor of the paper's code, measured on this kind of
-machine; DESIGN.md).
+machine; lib/README.md).
 
 Usage: python3 papers/porta-iterated-lp/benchmark_lp.py [--build build-papers] [--runs 3]
            [--time-limit 600] [--cases 6r-rigid,cyclohexane,6r-mobile[,bicyclohexane]]
@@ -31,7 +31,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 from section5 import CASES, cpu_model, solve_once  # noqa: E402
 
-# CuikSuite, one process, CPU seconds (DESIGN.md, "Peers").
+# CuikSuite, one process, CPU seconds (lib/README.md, "Peers").
 CUIK = {"6r-rigid": 0.9, "cyclohexane": 5.5, "6r-mobile": 45.0, "bicyclohexane": 887.0}
 DEFAULT_CASES = ["6r-rigid", "cyclohexane", "6r-mobile"]
 BACKENDS = ["safe", "exact"]
@@ -189,7 +189,7 @@ def report(raw, out_dir):
     missing = [k for k in CUIK if k not in keys]
     lines += ["",
               "CuikSuite (CLP, not rigorous: it trusts the float LP's infeasibility and gives no existence proof), "
-              "one process, CPU seconds, from DESIGN.md: 6R %g s, cyclohexane %g s, mobile 6R %g s, bicyclohexane %g s%s. "
+              "one process, CPU seconds, from lib/README.md: 6R %g s, cyclohexane %g s, mobile 6R %g s, bicyclohexane %g s%s. "
               "Its sigma for these timings is not recorded, so the comparison is of orders of magnitude. "
               "The paper's own times (Pentium 4, glpk) are in section5.md." % (
                   CUIK["6r-rigid"], CUIK["cyclohexane"], CUIK["6r-mobile"], CUIK["bicyclohexane"],

@@ -1,6 +1,6 @@
 #pragma once
 // The reference LP backend: CGAL's exact QP solver (number type Gmpzf) on the same LP,
-// read as rationals. Slow (DESIGN.md: 0.05-8 s per LP on a ~60-column relaxation), so it is
+// read as rationals. Slow (lib/README.md: 0.05-8 s per LP on a ~60-column relaxation), so it is
 // the oracle in tests and a selectable strategy, not the default. All CGAL headers stay in
 // exact_lp.cpp.
 #include "prune/lp/lp_solver.hpp"

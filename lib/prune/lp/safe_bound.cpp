@@ -11,7 +11,7 @@ double dual_lower_bound(const LinearProgram& program, std::span<const double> y,
                         std::span<const std::pair<int, double>> objective) {
   const int n = program.num_cols(), m = program.num_rows();
   // One rounding guard for the whole evaluation: FastInterval skips per-operation mode
-  // switches (DESIGN.md, "Intervals"). Nothing else runs while it lives.
+  // switches (lib/README.md, "Decisions"). Nothing else runs while it lives.
   RoundingGuard guard;
   std::vector<FastInterval> reduced(n, FastInterval(0.0));
   for (auto& [col, coef] : objective) reduced[col] += FastInterval(coef);

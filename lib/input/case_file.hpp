@@ -1,0 +1,25 @@
+#pragma once
+// Case files (TOML) -> what the user described, validated. Every bad input becomes an
+// InputError naming the file and line; nothing in a case file can crash the reader. The
+// kinds and their formats: polynomial_file, spherical_file and linkage_file.
+#include "input/input_error.hpp"
+#include "input/linkage_file.hpp"
+#include "input/polynomial_file.hpp"
+#include "input/spherical_file.hpp"
+
+#include <string>
+#include <string_view>
+#include <variant>
+
+namespace linkbox::input {
+
+struct Case {
+  std::string kind, name, file;
+  std::variant<model::System, SphericalCase, LinkageCase> description;
+};
+
+Case read_case(const std::string& path);
+// Same from text already in memory; `file` names it in messages.
+Case read_case_text(std::string_view text, const std::string& file);
+
+}  // namespace linkbox::input

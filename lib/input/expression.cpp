@@ -1,0 +1,323 @@
+#include "input/expression.hpp"
+
+#include "interval/rigorous.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
+namespace linkbox::input {
+
+namespace {
+
+using model::Polynomial;
+
+// Guards against inputs that would exhaust the stack or the memory instead of failing.
+constexpr int kMaxNesting = 200;
+constexpr size_t kMaxTermProducts = 1'000'000;
+
+// A parsed sub-expression. `has_variable` is syntactic: "x - x" folds to 0 but still counts
+// as a function of x, so sin(x - x) is rejected like sin(x).
+struct Value {
+  Polynomial poly;
+  bool has_variable = false;
+  Interval constant() const { return poly.constant_term(); }
+};
+
+struct Function {
+  std::string_view name;
+  Interval (*apply)(const Interval&);
+};
+constexpr Function kFunctions[] = {
+    {"sin", rigorous::sin},   {"cos", rigorous::cos},   {"tan", rigorous::tan},
+    {"asin", rigorous::asin}, {"acos", rigorous::acos}, {"atan", rigorous::atan},
+    {"sqrt", rigorous::sqrt}, {"exp", rigorous::exp},   {"log", rigorous::log},
+};
+
+const Function* find_function(std::string_view name) {
+  for (auto& f : kFunctions)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+bool is_identifier_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
+bool is_identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+bool is_nan_or_inf_name(std::string_view name) {
+  std::string lower;
+  for (char c : name) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lower == "nan" || lower == "inf" || lower == "infinity";
+}
+
+std::string describe(char c) {
+  if (std::isprint(static_cast<unsigned char>(c))) return std::string("'") + c + "'";
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "byte 0x%02X", static_cast<unsigned char>(c));
+  return buf;
+}
+
+Polynomial monomial(const model::Powers& powers) {
+  Polynomial m = Polynomial::constant(Interval(1.0));
+  for (auto [index, exponent] : powers) m = m * Polynomial::variable(index).pow(exponent);
+  return m;
+}
+
+class Parser {
+ public:
+  Parser(std::string_view text, const std::vector<std::string>& variables)
+      : text_(text), variables_(variables) {}
+
+  Value parse() {
+    if (next_token() == text_.size()) fail("empty expression", 0);
+    Value v = expression();
+    if (pos_ != text_.size()) unexpected("an operator or the end of the expression");
+    return v;
+  }
+
+ private:
+  Value expression() {
+    Value v = term();
+    for (char op = peek(); op == '+' || op == '-'; op = peek()) {
+      const size_t at = pos_++;
+      Value rhs = term();
+      if (op == '+')
+        v.poly += rhs.poly;
+      else
+        v.poly -= rhs.poly;
+      v.has_variable |= rhs.has_variable;
+      check_finite(v, at);
+    }
+    return v;
+  }
+
+  Value term() {
+    Value v = unary();
+    for (char op = peek(); op == '*' || op == '/'; op = peek()) {
+      const size_t at = pos_++;
+      const size_t rhs_at = next_token();
+      Value rhs = unary();
+      if (op == '*')
+        v = multiply(v, rhs, at);
+      else
+        v = divide(v, rhs, rhs_at);
+      check_finite(v, at);
+    }
+    return v;
+  }
+
+  Value unary() {
+    const char c = peek();
+    if (c != '-' && c != '+') return power();
+    const size_t at = pos_++;
+    Nesting guard(*this, at);
+    Value v = unary();
+    if (c == '-') v.poly = -v.poly;
+    return v;
+  }
+
+  Value power() {
+    Value base = primary();
+    if (peek() != '^') return base;
+    const size_t at = pos_++;
+    const size_t exponent_at = next_token();
+    Nesting guard(*this, at);
+    const Value exponent = unary();  // right-associative; admits "-1" to reject it clearly
+    const int n = integer_exponent(exponent, exponent_at);
+    Value r{Polynomial::constant(Interval(1.0)), base.has_variable};
+    if (n == 0) return r;  // x^0 = 1, also for 0^0 (Boost's pow would return empty)
+    if (!base.has_variable) {
+      r.poly = Polynomial::constant(boost::numeric::pow(base.constant(), n));
+    } else {
+      for (int k = n; k > 0; k >>= 1) {  // square-and-multiply, guarded against blow-up
+        if (k & 1) r = multiply(r, base, at);
+        if (k > 1) base = multiply(base, base, at);
+      }
+    }
+    check_finite(r, at);
+    return r;
+  }
+
+  Value primary() {
+    const char c = peek();
+    const size_t at = pos_;
+    if (pos_ == text_.size()) fail("expression ends where a number, variable or '(' was expected", at);
+    if (is_digit(c) || (c == '.' && pos_ + 1 < text_.size() && is_digit(text_[pos_ + 1]))) return number();
+    if (is_identifier_start(c)) return identifier();
+    if (c == '(') {
+      ++pos_;
+      Nesting guard(*this, at);
+      Value v = expression();
+      expect_closing(at);
+      return v;
+    }
+    if (c == ')') fail("')' where a number, variable or '(' was expected", at);
+    unexpected("a number, variable or '('");
+  }
+
+  Value number() {
+    const size_t start = pos_;
+    auto digits = [&] {
+      size_t n = 0;
+      for (; pos_ < text_.size() && is_digit(text_[pos_]); ++pos_) ++n;
+      return n;
+    };
+    size_t mantissa_digits = digits();
+    if (pos_ < text_.size() && text_[pos_] == '.') {
+      ++pos_;
+      mantissa_digits += digits();
+    }
+    if (mantissa_digits == 0) fail("malformed number", start);
+    if (pos_ < text_.size() && (text_[pos_] == 'e' || text_[pos_] == 'E')) {
+      ++pos_;
+      if (pos_ < text_.size() && (text_[pos_] == '+' || text_[pos_] == '-')) ++pos_;
+      if (digits() == 0) fail("malformed number: exponent has no digits", start);
+    }
+    const std::string_view literal = text_.substr(start, pos_ - start);
+    if (pos_ < text_.size() && is_identifier_char(text_[pos_]))
+      fail("missing operator between the number " + std::string(literal) + " and " + describe(text_[pos_]) +
+               " (write 2*x, not 2x)",
+           pos_);
+    Interval x;
+    try {
+      x = rigorous::decimal(literal);
+    } catch (const std::invalid_argument&) {
+      fail("malformed number '" + std::string(literal) + "'", start);
+    }
+    if (!is_finite(x)) fail("number " + std::string(literal) + " is outside the range of a double", start);
+    return Value{Polynomial::constant(x), false};
+  }
+
+  Value identifier() {
+    const size_t start = pos_;
+    while (pos_ < text_.size() && is_identifier_char(text_[pos_])) ++pos_;
+    const std::string name(text_.substr(start, pos_ - start));
+    for (size_t i = 0; i < variables_.size(); ++i)
+      if (variables_[i] == name) return Value{Polynomial::variable(static_cast<int>(i)), true};
+    if (name == "pi") return Value{Polynomial::constant(rigorous::pi()), false};
+    const bool called = peek() == '(';
+    if (const Function* f = find_function(name)) {
+      if (!called) fail("function '" + name + "' needs a parenthesised argument", start);
+      return call(*f, start);
+    }
+    if (is_nan_or_inf_name(name)) fail("'" + name + "' is not allowed: numbers must be finite", start);
+    if (called) fail("unknown function '" + name + "'", start);
+    if (variables_.empty()) fail("unknown name '" + name + "' (a constant expression has no variables)", start);
+    fail("unknown variable '" + name + "'", start);
+  }
+
+  Value call(const Function& f, size_t name_at) {
+    const size_t open_at = pos_++;  // at '('
+    Nesting guard(*this, open_at);
+    const Value arg = expression();
+    expect_closing(open_at);
+    if (arg.has_variable)
+      fail(std::string(f.name) + " of an expression with variables: functions apply to constants only",
+           name_at);
+    try {
+      Value r{Polynomial::constant(f.apply(arg.constant())), false};
+      check_finite(r, name_at);
+      return r;
+    } catch (const std::domain_error& e) {
+      const std::string why = e.what();
+      const std::string prefix = std::string(f.name) + ":";
+      fail(why.rfind(prefix, 0) == 0 ? why : prefix + " " + why, name_at);
+    }
+  }
+
+  Value multiply(const Value& a, const Value& b, size_t at) {
+    if (a.poly.terms().size() * b.poly.terms().size() > kMaxTermProducts)
+      fail("expression expands to too many terms", at);
+    return Value{a.poly * b.poly, a.has_variable || b.has_variable};
+  }
+
+  // Divides coefficient by coefficient: tighter than multiplying by an enclosure of 1/d.
+  Value divide(const Value& a, const Value& b, size_t divisor_at) {
+    if (b.has_variable) fail("division by an expression with variables (only constant divisors)", divisor_at);
+    const Interval d = b.constant();
+    if (boost::numeric::zero_in(d)) fail("division by an interval containing zero", divisor_at);
+    Polynomial r;
+    for (auto& [powers, c] : a.poly.terms()) r += monomial(powers) * (c / d);
+    return Value{r, a.has_variable};
+  }
+
+  int integer_exponent(const Value& e, size_t at) {
+    const Interval x = e.constant();
+    if (e.has_variable || x.lower() != x.upper() || x.lower() < 0 || std::floor(x.lower()) != x.lower())
+      fail("exponent must be a non-negative integer constant", at);
+    if (x.lower() > kMaxExponent) fail("exponent is larger than " + std::to_string(kMaxExponent), at);
+    return static_cast<int>(x.lower());
+  }
+
+  void check_finite(const Value& v, size_t at) {
+    for (auto& [powers, c] : v.poly.terms())
+      if (!is_finite(c)) fail("result is not finite (overflow)", at);
+  }
+
+  void expect_closing(size_t open_at) {
+    if (peek() == ')') {
+      ++pos_;
+      return;
+    }
+    if (pos_ == text_.size()) fail("missing ')' for the '(' at column " + std::to_string(open_at), pos_);
+    unexpected("')' (closing the '(' at column " + std::to_string(open_at) + ")");
+  }
+
+  // The parser stopped at a character that cannot continue the expression.
+  [[noreturn]] void unexpected(const std::string& expected) {
+    const char c = text_[pos_];
+    if (c == ')') fail("unmatched ')'", pos_);
+    if (is_identifier_char(c) || c == '(' || c == '.') fail("missing operator before " + describe(c), pos_);
+    fail("unexpected character " + describe(c) + ", expected " + expected, pos_);
+  }
+
+  [[noreturn]] void fail(const std::string& message, size_t column) {
+    throw ParseError(message, static_cast<int>(column));
+  }
+
+  char peek() { return next_token() < text_.size() ? text_[pos_] : '\0'; }
+
+  // Skips whitespace; returns the offset of the next token (text size at the end).
+  size_t next_token() {
+    skip_space();
+    return pos_;
+  }
+
+  void skip_space() {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+  }
+
+  // Recursion depth guard: deep nesting is an error message, not a stack overflow.
+  struct Nesting {
+    Parser& p;
+    Nesting(Parser& parser, size_t at) : p(parser) {
+      if (++p.depth_ > kMaxNesting) p.fail("expression nested too deeply", at);
+    }
+    ~Nesting() { --p.depth_; }
+  };
+
+  std::string_view text_;
+  const std::vector<std::string>& variables_;
+  size_t pos_ = 0;
+  int depth_ = 0;
+};
+
+}  // namespace
+
+model::Polynomial parse_polynomial(std::string_view text, const std::vector<std::string>& variables) {
+  return Parser(text, variables).parse().poly;
+}
+
+Interval parse_constant(std::string_view text) {
+  static const std::vector<std::string> none;
+  return Parser(text, none).parse().constant();
+}
+
+bool is_valid_variable_name(std::string_view name) {
+  if (name.empty() || !is_identifier_start(name[0])) return false;
+  for (char c : name)
+    if (!is_identifier_char(c)) return false;
+  return name != "pi" && !find_function(name) && !is_nan_or_inf_name(name);
+}
+
+}  // namespace linkbox::input

@@ -1,0 +1,45 @@
+#pragma once
+// Text -> polynomial with rigorous interval coefficients, for equations and numbers typed in
+// case files. Every decimal literal is enclosed as the decimal the user wrote (0.0175 is not a
+// double) and every constant sub-expression is folded with rigorous::, so a constant's
+// interval provably contains the real value the text denotes.
+//
+// Grammar (whitespace anywhere between tokens):
+//   expr    := term (('+' | '-') term)*
+//   term    := unary (('*' | '/') unary)*
+//   unary   := ('-' | '+') unary | power
+//   power   := primary ('^' unary)?          right-associative: 2^3^2 = 2^9
+//   primary := number | 'pi' | variable | function '(' expr ')' | '(' expr ')'
+//   number  := digits ['.' digits] | '.' digits, then optionally [eE][+-]digits
+//   function: sin cos tan asin acos atan sqrt exp log, of constant arguments only.
+// Exponents are exact non-negative integers (at most kMaxExponent); divisors are constant
+// expressions whose interval excludes 0.
+#include "model/polynomial.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace linkbox::input {
+
+inline constexpr int kMaxExponent = 1000;
+
+// what() is the bare message; `column` is the 0-based byte offset in the parsed text.
+struct ParseError : std::runtime_error {
+  int column;
+  ParseError(const std::string& message, int column) : std::runtime_error(message), column(column) {}
+};
+
+// Parses `text` as a polynomial in `variables` (variable i of the result = variables[i]).
+// A declared variable named like a constant (`pi`) shadows it.
+model::Polynomial parse_polynomial(std::string_view text, const std::vector<std::string>& variables);
+
+// Parses a constant expression such as "pi/2", "acos(-1/3)" or "-0.7448995469549714".
+Interval parse_constant(std::string_view text);
+
+// Whether `name` may be used as a variable name in an expression (identifier syntax, not a
+// constant or function name).
+bool is_valid_variable_name(std::string_view name);
+
+}  // namespace linkbox::input

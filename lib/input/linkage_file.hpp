@@ -1,0 +1,61 @@
+#pragma once
+// The "linkage" case kind: loops of links in the Denavit-Hartenberg convention (the format is
+// described in linkage_file.cpp), and what a linkage must satisfy before it is modelled.
+#include "input/input_error.hpp"
+#include "interval/interval.hpp"
+
+#include <toml++/toml.h>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace linkbox::input {
+
+class TomlReader;
+
+// Entry i of a loop: joint i (axis d_i), then link i, which runs along the common normal
+// a_i from joint i to joint i+1 (the next entry's joint; the last entry wraps around).
+struct LoopLink {
+  std::string link;
+  std::string joint;
+  bool prismatic = false;
+  Interval a;      // link length along a_i (may be 0: the axes meet)
+  Interval alpha;  // twist: angle from d_i to d_{i+1} about a_i, radians
+  Interval d;      // revolute: offset along d_i from a_{i-1} to a_i; prismatic: its range
+  Interval theta;  // prismatic only: the fixed angle from a_{i-1} to a_i about d_i, radians
+  int line = 0;
+};
+
+struct LinkageLoop {
+  std::string name;
+  std::vector<LoopLink> links;
+  int line = 0;
+};
+
+// d_{joint1} . d_{joint2} = cos(angle): ties axes of different loops (e.g. the third bond of
+// a bridgehead atom in bicyclohexane).
+struct AngleConstraint {
+  std::string name;
+  std::string joint1, joint2;
+  Interval angle;
+  int line = 0;
+};
+
+struct LinkageCase {
+  std::string name;
+  std::string file;    // for messages
+  std::string ground;  // the link whose frame is the world frame
+  int ground_line = 0;
+  std::vector<LinkageLoop> loops;
+  std::vector<AngleConstraint> angle_constraints;
+};
+
+// Names, topology and parameters (see linkage_validate.cpp); throws InputError.
+void validate(const LinkageCase& c);
+
+// Reads and validates a linkage case. `text` is the document's source (see read_spherical).
+LinkageCase read_linkage(const toml::table& root, const TomlReader& r);
+LinkageCase read_linkage(const toml::table& root, const std::string& file, std::string_view text = {});
+
+}  // namespace linkbox::input

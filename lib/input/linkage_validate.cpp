@@ -1,0 +1,143 @@
+#include "input/linkage_file.hpp"
+
+#include <boost/pending/disjoint_sets.hpp>
+
+#include <map>
+#include <tuple>
+
+namespace linkbox::input {
+
+namespace {
+
+bool same(const Interval& x, const Interval& y) { return x.lower() == y.lower() && x.upper() == y.upper(); }
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+std::string at_line(int line) { return " (line " + std::to_string(line) + ")"; }
+
+}  // namespace
+
+// What a case must satisfy before it is modelled:
+//  - at least one loop, unique loop names, at least 3 links per loop, non-empty names;
+//  - a loop passes each joint and each link at most once;
+//  - a joint joins the same two links, in the same direction, in every loop through it (its
+//    axis d is one vector), and has the same type (and for a prismatic joint the same theta
+//    and range) everywhere;
+//  - a link seen between the same two joints in several loops has the same a and alpha there,
+//    and a link in several loops keeps one of its joints in all of them (otherwise nothing in
+//    the vector model would tie the two appearances together);
+//  - parameters finite, prismatic ranges non-empty;
+//  - the ground link exists; angle constraints name two different known joints;
+//  - every loop is tied to the ground's loops through shared joints or angle constraints
+//    (a loop tied to nothing could turn freely as a whole).
+void validate(const LinkageCase& c) {
+  auto fail = [&](int line, const std::string& m) { throw InputError(c.file, line, m); };
+  if (c.loops.empty()) fail(0, "no loops");
+
+  struct JointUse {
+    const LinkageLoop* loop;
+    const LoopLink* entry;
+    std::string prev, next;
+  };
+  struct LinkUse {
+    const LinkageLoop* loop;
+    const LoopLink* entry;
+    std::string in, out;
+  };
+  std::map<std::string, int> loop_lines;
+  std::map<std::string, JointUse> joints;
+  std::map<std::string, LinkUse> links;
+  std::map<std::tuple<std::string, std::string, std::string>, const LoopLink*> normals;
+  std::map<std::string, std::vector<int>> loops_of_joint;
+  std::map<std::string, int> loop_of_link;  // first loop through each link
+
+  for (size_t l = 0; l < c.loops.size(); ++l) {
+    const LinkageLoop& loop = c.loops[l];
+    if (loop.name.empty()) fail(loop.line, "empty loop name");
+    if (auto [it, fresh] = loop_lines.emplace(loop.name, loop.line); !fresh)
+      fail(loop.line, "duplicate loop name " + quote(loop.name) + " (first declared on line " +
+                          std::to_string(it->second) + ")");
+    const size_t n = loop.links.size();
+    if (n < 3)
+      fail(loop.line, "loop " + quote(loop.name) + " has " + std::to_string(n) +
+                          " link(s); a loop needs at least 3 (joints and links alternate around it)");
+    std::map<std::string, int> joints_here, links_here;
+    for (const LoopLink& e : loop.links) {
+      if (e.link.empty()) fail(e.line, "empty link name");
+      if (e.joint.empty()) fail(e.line, "empty joint name");
+      if (auto [it, fresh] = joints_here.emplace(e.joint, e.line); !fresh)
+        fail(e.line, "joint " + quote(e.joint) + " appears twice in loop " + quote(loop.name) + " (also on line " +
+                         std::to_string(it->second) + "): a loop passes each joint once");
+      if (auto [it, fresh] = links_here.emplace(e.link, e.line); !fresh)
+        fail(e.line, "link " + quote(e.link) + " appears twice in loop " + quote(loop.name) + " (also on line " +
+                         std::to_string(it->second) + "): a loop passes each link once");
+      for (const Interval* v : {&e.a, &e.alpha, &e.d})
+        if (!is_finite(*v)) fail(e.line, "parameter of link " + quote(e.link) + " is not finite");
+      if (e.prismatic && !is_finite(e.theta)) fail(e.line, "theta of joint " + quote(e.joint) + " is not finite");
+      if (e.prismatic && !(e.d.lower() <= e.d.upper()))
+        fail(e.line, "empty range of the offset d of prismatic joint " + quote(e.joint));
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const LoopLink& e = loop.links[i];
+      const std::string& prev = loop.links[(i + n - 1) % n].link;
+      const std::string& next_joint = loop.links[(i + 1) % n].joint;
+      loops_of_joint[e.joint].push_back(static_cast<int>(l));
+      loop_of_link.emplace(e.link, static_cast<int>(l));
+
+      if (auto [it, fresh] = joints.emplace(e.joint, JointUse{&loop, &e, prev, e.link}); !fresh) {
+        const JointUse& u = it->second;
+        const std::string there = " in loop " + quote(u.loop->name) + at_line(u.entry->line);
+        if (u.entry->prismatic != e.prismatic)
+          fail(e.line, "joint " + quote(e.joint) + " is " + (e.prismatic ? "prismatic" : "revolute") + " here but " +
+                           (u.entry->prismatic ? "prismatic" : "revolute") + there);
+        if (u.prev != prev || u.next != e.link)
+          fail(e.line, "joint " + quote(e.joint) + " joins links " + quote(prev) + " -> " + quote(e.link) +
+                           " here but " + quote(u.prev) + " -> " + quote(u.next) + there +
+                           ": a joint joins the same two links in every loop, passed in the same direction");
+        if (e.prismatic && (!same(e.theta, u.entry->theta) || !same(e.d, u.entry->d)))
+          fail(e.line, "prismatic joint " + quote(e.joint) + " has another theta or range than" + there);
+      }
+      if (auto [it, fresh] = links.emplace(e.link, LinkUse{&loop, &e, e.joint, next_joint}); !fresh) {
+        const LinkUse& u = it->second;
+        if (u.in != e.joint && u.out != next_joint)
+          fail(e.line, "link " + quote(e.link) + " runs from joint " + quote(e.joint) + " to " + quote(next_joint) +
+                           " here but from " + quote(u.in) + " to " + quote(u.out) + " in loop " +
+                           quote(u.loop->name) + at_line(u.entry->line) +
+                           ": a link shared by loops must keep one of its joints in all of them");
+      }
+      if (auto [it, fresh] = normals.emplace(std::make_tuple(e.joint, e.link, next_joint), &e); !fresh) {
+        const LoopLink& u = *it->second;
+        if (!same(u.a, e.a) || !same(u.alpha, e.alpha))
+          fail(e.line, "link " + quote(e.link) + " between joints " + quote(e.joint) + " and " + quote(next_joint) +
+                           " has other a or alpha than on line " + std::to_string(u.line));
+      }
+    }
+  }
+
+  if (c.ground.empty()) fail(c.ground_line, "no ground link");
+  auto ground = loop_of_link.find(c.ground);
+  if (ground == loop_of_link.end()) fail(c.ground_line, "unknown ground link " + quote(c.ground) + " (in no loop)");
+
+  boost::disjoint_sets_with_storage<> tied(c.loops.size());
+  auto unite = [&](int a, int b) { tied.union_set(a, b); };
+  for (auto& [joint, loops] : loops_of_joint)
+    for (int l : loops) unite(l, loops.front());
+
+  std::map<std::string, int> constraint_lines;
+  for (const AngleConstraint& a : c.angle_constraints) {
+    if (!a.name.empty())
+      if (auto [it, fresh] = constraint_lines.emplace(a.name, a.line); !fresh)
+        fail(a.line, "duplicate angle constraint name " + quote(a.name) + " (first declared on line " +
+                         std::to_string(it->second) + ")");
+    for (const std::string* j : {&a.joint1, &a.joint2})
+      if (!joints.count(*j)) fail(a.line, "angle constraint names unknown joint " + quote(*j));
+    if (a.joint1 == a.joint2) fail(a.line, "angle constraint between joint " + quote(a.joint1) + " and itself");
+    if (!is_finite(a.angle)) fail(a.line, "angle constraint angle is not finite");
+    unite(loops_of_joint[a.joint1].front(), loops_of_joint[a.joint2].front());
+  }
+  for (size_t l = 0; l < c.loops.size(); ++l)
+    if (tied.find_set(static_cast<int>(l)) != tied.find_set(ground->second))
+      fail(c.loops[l].line, "loop " + quote(c.loops[l].name) + " is not tied to the ground link " + quote(c.ground) +
+                                ": it shares no joint (nor an angle constraint) with the loops through it, so it "
+                                "could turn freely as a whole");
+}
+
+}  // namespace linkbox::input

@@ -1,0 +1,33 @@
+#pragma once
+// A polynomial system of any shape in float arithmetic (midpoints of interval values at a
+// point). It only chooses where to look and which equations to keep; it proves nothing.
+#include "model/polynomial.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace linkbox::newton {
+
+class FloatSystem {
+ public:
+  FloatSystem(const std::vector<model::Polynomial>& f, size_t unknowns);
+  Eigen::VectorXd values(const Eigen::VectorXd& x) const;
+  Eigen::MatrixXd jacobian(const Eigen::VectorXd& x) const;
+  // Gauss-Newton with the pseudo-inverse: onto a curve, or the least-squares point of an
+  // overdetermined system.
+  Eigen::VectorXd solve_from(Eigen::VectorXd x) const;
+
+ private:
+  std::vector<model::Polynomial> f_;
+  std::vector<std::vector<model::Polynomial>> df_;
+};
+
+Eigen::VectorXd centre(const Box& b);  // midpoints
+
+// The rows of `j` (at least as many as columns) that a column-pivoted QR of j^T keeps first:
+// j.cols() equations whose Jacobian is best conditioned, sorted. A choice, not a proof: any
+// square subsystem's roots contain the full system's.
+std::vector<int> independent_rows(const Eigen::MatrixXd& j);
+
+}  // namespace linkbox::newton

@@ -1,0 +1,82 @@
+#include "newton/interval_eigen.hpp"
+
+namespace linkbox::newton {
+
+IVector to_ivector(const Box& box) {
+  IVector v(static_cast<Eigen::Index>(box.size()));
+  for (size_t i = 0; i < box.size(); ++i) v(static_cast<Eigen::Index>(i)) = box[i];
+  return v;
+}
+
+Box to_box(const IVector& v) { return Box(v.data(), v.data() + v.size()); }
+
+IMatrix to_interval(const Eigen::MatrixXd& a) {
+  IMatrix r(a.rows(), a.cols());
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (Eigen::Index j = 0; j < a.cols(); ++j) r(i, j) = Interval(a(i, j));
+  return r;
+}
+
+Eigen::MatrixXd midpoint(const IMatrix& a) {
+  Eigen::MatrixXd r(a.rows(), a.cols());
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (Eigen::Index j = 0; j < a.cols(); ++j) r(i, j) = median(a(i, j));
+  return r;
+}
+
+Eigen::VectorXd midpoint(const IVector& v) {
+  Eigen::VectorXd r(v.size());
+  for (Eigen::Index i = 0; i < v.size(); ++i) r(i) = median(v(i));
+  return r;
+}
+
+IVector multiply(const Eigen::MatrixXd& a, const IVector& x) {
+  IVector r(a.rows());
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    Interval s(0.0);
+    for (Eigen::Index k = 0; k < a.cols(); ++k) s += a(i, k) * x(k);
+    r(i) = s;
+  }
+  return r;
+}
+
+IMatrix multiply(const Eigen::MatrixXd& a, const IMatrix& b) {
+  IMatrix r(a.rows(), b.cols());
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (Eigen::Index j = 0; j < b.cols(); ++j) {
+      Interval s(0.0);
+      for (Eigen::Index k = 0; k < a.cols(); ++k) s += a(i, k) * b(k, j);
+      r(i, j) = s;
+    }
+  return r;
+}
+
+IMatrix identity_minus(const Eigen::MatrixXd& a, const IMatrix& b) {
+  IMatrix r(a.rows(), b.cols());
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (Eigen::Index j = 0; j < b.cols(); ++j) {
+      // Start from the identity entry so the cancellation 1 - (AB)_ii happens inside one
+      // outward-rounded accumulation.
+      Interval s(i == j ? 1.0 : 0.0);
+      for (Eigen::Index k = 0; k < a.cols(); ++k) s -= a(i, k) * b(k, j);
+      r(i, j) = s;
+    }
+  return r;
+}
+
+double norm_inf_upper(const IMatrix& a) {
+  RoundingGuard up;  // add_up below rounds towards +inf
+  double best = 0;
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    double row = 0;
+    for (Eigen::Index j = 0; j < a.cols(); ++j) {
+      double m = std::max(std::fabs(a(i, j).lower()), std::fabs(a(i, j).upper()));
+      if (std::isnan(m)) return kInf;
+      row = up.add_up(row, m);
+    }
+    best = std::max(best, row);
+  }
+  return best;
+}
+
+}  // namespace linkbox::newton

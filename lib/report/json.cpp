@@ -1,0 +1,173 @@
+#include "report/json.hpp"
+
+#include "solve/strategy.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace linkbox::report {
+
+using nlohmann::json;
+
+json interval_json(const Interval& x) { return json::array({x.lower(), x.upper()}); }
+
+json box_json(const Box& b) {
+  json j = json::array();
+  for (auto& x : b) j.push_back(interval_json(x));
+  return j;
+}
+
+namespace {
+json stats_json(const solve::Stats& s) {
+  return {{"processed", s.processed}, {"empty", s.empty}, {"split", s.split},
+          {"solution_boxes", s.solution}, {"shrinks", s.shrinks}, {"seconds", s.seconds}};
+}
+}  // namespace
+
+json result_json(const std::string& case_name, const std::string& case_file,
+                 const formulate::Formulation& formulation, const solve::RunOptions& options,
+                 const solve::CaseResult& result) {
+  const auto& p = options.params;
+  json j;
+  j["case"] = case_name;
+  j["case_file"] = case_file;
+  j["kind"] = formulation.kind();
+  j["variables"] = formulation.output_names();
+  j["variables_unit"] = formulation.outputs_are_angles() ? "radians" : "";
+  j["parameters"] = {{"sigma", p.sigma},
+                     {"rho", p.rho},
+                     {"order", p.order == solve::Order::depth_first ? "dfs" : "bfs"},
+                     {"prune", solve::strategy_name(options.strategy.contractors)},
+                     {"lp", prune::lp::to_string(options.strategy.lp)},
+                     {"arith", to_string(options.strategy.arith)},
+                     {"time_limit", p.time_limit},
+                     {"max_boxes", p.max_boxes},
+                     {"threads", options.threads}};
+  // Model size of an L/P/H formulation (iterated-LP paper): primary, dummy, #L, #P, #H.
+  if (formulation.subproblem_count() == 1) {
+    const auto sub = formulation.subproblem(0);
+    if (sub.lph) {
+      const auto& m = *sub.lph;
+      j["model"] = {{"primary", m.primary.size()}, {"dummy", m.variables.size() - m.primary.size()},
+                    {"linear", m.linear.size()}, {"parabolic", m.parabolic.size()}, {"hyperbolic", m.hyperbolic.size()}};
+    }
+  }
+  j["complete"] = result.complete;
+  if (!result.complete) j["stop_reason"] = result.stop_reason;
+  json stats = stats_json(result.total);
+  stats["subproblems"] = result.subproblems.size();
+  stats["seconds"] = result.seconds;
+  stats["cpu_seconds"] = result.total.seconds;
+  j["stats"] = stats;
+  json contractors = json::array();
+  for (size_t k = 0; k < result.counters.size(); ++k) {
+    auto& c = result.counters[k];
+    contractors.push_back({{"name", result.contractor_names.at(k)}, {"calls", c.calls}, {"emptied", c.emptied},
+                           {"volume_removed", c.volume_removed}, {"seconds", c.seconds},
+                           {"lps_solved", c.lps_solved}, {"lp_iterations", c.lp_iterations}});
+  }
+  j["contractors"] = contractors;
+  json subs = json::array(), sols = json::array();
+  for (auto& s : result.subproblems) {
+    json sj = stats_json(s.stats);
+    sj["index"] = s.index;
+    sj["label"] = s.label;
+    sj["equations"] = s.equations;
+    sj["variables"] = s.variables;
+    sj["complete"] = s.complete;
+    subs.push_back(sj);
+    for (size_t k = 0; k < s.solutions.size(); ++k) {
+      const Box& box = s.solutions[k];
+      json sol = {{"subproblem", s.index},
+                  {"box", box_json(formulation.to_output(s.index, box))},
+                  {"search_box", box_json(box)},
+                  {"residual", s.residuals.at(k)}};
+      for (auto& m : formulation.declared_outputs(s.index, box)) {
+        json rows = json::array();
+        for (auto& row : m.rows) rows.push_back(box_json(row));
+        sol[m.name] = rows;  // e.g. "rotation": 3x3 [lo, hi], row-major
+      }
+      sols.push_back(sol);
+    }
+  }
+  j["subproblem_stats"] = subs;
+  j["solutions"] = sols;
+  return j;
+}
+
+namespace {
+
+json matrix_json(const Eigen::MatrixXd& m) {
+  json j = json::array();
+  for (int r = 0; r < m.rows(); ++r) {
+    json row = json::array();
+    for (int c = 0; c < m.cols(); ++c) row.push_back(m(r, c));
+    j.push_back(row);
+  }
+  return j;
+}
+
+json certificate_json(const newton::Certificate& c) {
+  json j = {{"status", c.status == newton::Status::certified ? "certified" : "unverified"},
+            {"method", c.method == newton::Method::krawczyk ? "krawczyk" : "hansen-sengupta"},
+            {"box", box_json(c.box)},
+            {"image", box_json(c.image)},
+            {"preconditioner", matrix_json(c.preconditioner)},
+            {"unique_in_hull", c.unique_in_hull},
+            {"on_domain_boundary", c.on_domain_boundary},
+            {"root_in_domain", c.root_in_domain}};
+  if (c.status != newton::Status::certified) j["reason"] = newton::to_string(c.reason);
+  if (c.fixed_variable >= 0) j["fixed_variable"] = c.fixed_variable;
+  return j;
+}
+
+}  // namespace
+
+void add_verification(json& j, const formulate::Formulation& f, const verify::VerifyReport& r) {
+  j["certified_roots"] = r.certified_roots;
+  j["headline"] = r.headline;
+  j["verification"] = {{"certified_roots", r.certified_roots}, {"unverified", r.unverified}, {"curves", r.curves}, {"empty", r.empty},
+                       {"exact", r.exact}, {"seconds", r.seconds}};
+  json clusters = json::array();
+  for (auto& c : r.clusters) {
+    json cj = {{"status", verify::to_string(c.status)}, {"boxes", c.boxes.size()}, {"hull", box_json(c.hull)},
+               {"chart", c.chart}, {"max_residual", c.max_residual}};
+    if (!c.reason.empty()) cj["reason"] = c.reason;
+    json members = json::array();
+    for (auto [s, k] : c.boxes) members.push_back({s, k});
+    cj["members"] = members;
+    cj["natural_unknowns"] = f.natural_system(c.chart).unknowns;
+    if (c.status == verify::ClusterStatus::certified) {
+      cj["root"] = box_json(c.root);
+      for (auto& m : c.outputs) {
+        json rows = json::array();
+        for (auto& row : m.rows) rows.push_back(box_json(row));
+        cj[m.name] = rows;
+      }
+      if (c.duplicate_of >= 0) cj["duplicate_of"] = c.duplicate_of;
+      cj["distances"] = c.distances;
+      cj["max_distance"] = c.max_distance;
+    }
+    if (c.status != verify::ClusterStatus::curve) {
+      cj["certificate"] = certificate_json(c.certificate);
+      if (!c.subsystem.empty()) cj["subsystem"] = c.subsystem;
+      if (c.excluding_equation >= 0) cj["excluding_equation"] = c.excluding_equation;
+    }
+    if (c.status == verify::ClusterStatus::curve) {
+      json xs = json::array();
+      for (auto& x : c.crossings) {
+        json xj = certificate_json(x.certificate);
+        xj["member"] = x.box;
+        xj["chart"] = x.chart;
+        xj["dropped_equations"] = x.dropped_equations;
+        xs.push_back(xj);
+      }
+      cj["crossings"] = xs;
+      cj["crossings_certified"] = c.crossings_certified;
+      cj["crossings_fraction"] = c.crossings.empty() ? 0.0 : double(c.crossings_certified) / c.crossings.size();
+    }
+    clusters.push_back(cj);
+  }
+  j["clusters"] = clusters;
+}
+
+}  // namespace linkbox::report

@@ -1,0 +1,63 @@
+#include "report/text.hpp"
+
+namespace linkbox::report {
+
+void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::RunOptions& o,
+                   const solve::CaseResult& r) {
+  const auto& f = *c.formulation;
+  std::fprintf(out, "case      %s (%s, %s)\n", c.name.c_str(), c.kind.c_str(), c.file.c_str());
+  std::fprintf(out, "strategy  prune=%s sigma=%g rho=%g order=%s threads=%d%s\n",
+               solve::strategy_name(r.contractor_names).c_str(), o.params.sigma, o.params.rho,
+               o.params.order == solve::Order::depth_first ? "dfs" : "bfs", o.threads,
+               r.rigorous ? "" : "  arith=float (UNVERIFIED: boxes discarded on float evidence)");
+  if (f.subproblem_count() == 1)
+    if (auto sub = f.subproblem(0); sub.lph)
+      std::fprintf(out, "model     %zu primary + %zu dummy variables; %zu linear, %zu parabolic, %zu hyperbolic equations\n",
+                   sub.lph->primary.size(), sub.lph->variables.size() - sub.lph->primary.size(), sub.lph->linear.size(),
+                   sub.lph->parabolic.size(), sub.lph->hyperbolic.size());
+  std::fprintf(out, "\n%-12s %10s %10s %10s %10s %10s %10s\n", "subproblems", "processed", "empty", "split", "solution",
+               "search [s]", "wall [s]");
+  std::fprintf(out, "%-12zu %10ld %10ld %10ld %10ld %10.3f %10.3f\n", r.subproblems.size(), r.total.processed,
+               r.total.empty, r.total.split, r.total.solution, r.total.seconds, r.seconds);
+  std::fprintf(out, "\n%s\n",
+               r.complete ? "complete: every box of the domain was processed"
+                          : ("INCOMPLETE (" + r.stop_reason + "): results cover only what was explored").c_str());
+  const auto names = f.output_names();
+  size_t total = 0;
+  for (auto& s : r.subproblems) total += s.solutions.size();
+  if (total) std::fprintf(out, "\nsolution boxes (%s, midpoints):\n", f.outputs_are_angles() ? "radians" : "values");
+  constexpr size_t kShown = 20;
+  size_t shown = 0;
+  for (auto& s : r.subproblems)
+    for (auto& b : s.solutions) {
+      if (shown++ == kShown) {
+        std::fprintf(out, "  ... %zu more in the JSON output\n", total - kShown);
+        return;
+      }
+      const Box box = f.to_output(s.index, b);
+      std::fprintf(out, "  [%s]", s.label.c_str());
+      for (size_t i = 0; i < box.size(); ++i) std::fprintf(out, " %s=%+.6f", names[i].c_str(), median(box[i]));
+      std::fprintf(out, "  (width %.1e)\n", max_width(box));
+    }
+}
+
+void print_verification(std::FILE* out, const formulate::LoadedCase& c, const verify::VerifyReport& v) {
+  const auto names = c.formulation->output_names();
+  std::fprintf(out, "\nverification (%.3f s): %s\n", v.seconds, v.headline.c_str());
+  int k = 0;
+  for (auto& cl : v.clusters) {
+    if (cl.status != verify::ClusterStatus::certified || cl.duplicate_of >= 0) continue;
+    std::fprintf(out, "  root %2d:", ++k);
+    for (size_t i = 0; i < cl.root.size(); ++i) std::fprintf(out, " %s=%+.12f", names[i].c_str(), median(cl.root[i]));
+    std::fprintf(out, "  (certified box width %.1e)\n", max_width(cl.root));
+  }
+  for (auto& cl : v.clusters) {
+    if (cl.status == verify::ClusterStatus::curve)
+      std::fprintf(out, "  curve: %zu boxes, %d/%zu crossings certified\n", cl.boxes.size(), cl.crossings_certified,
+                   cl.crossings.size());
+    else if (cl.status == verify::ClusterStatus::unverified)
+      std::fprintf(out, "  unverified cluster of %zu boxes: %s\n", cl.boxes.size(), cl.reason.c_str());
+  }
+}
+
+}  // namespace linkbox::report

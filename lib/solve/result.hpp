@@ -1,0 +1,47 @@
+#pragma once
+// What a search returns: solution boxes per sub-problem, counts, and whether it covered the
+// whole domain. Plain data, read by verify and report.
+#include "interval/box.hpp"
+#include "prune/counters.hpp"
+
+#include <string>
+#include <vector>
+
+namespace linkbox::solve {
+
+struct Stats {
+  long processed = 0;  // boxes taken from the list
+  long empty = 0;
+  long solution = 0;
+  long split = 0;
+  long shrinks = 0;    // contractor passes
+  double seconds = 0;
+  Stats& operator+=(const Stats& o);
+};
+
+struct SubResult {
+  size_t index = 0;
+  std::string label;
+  int equations = 0;
+  int variables = 0;
+  std::vector<Box> solutions;  // in the sub-problem's search variables
+  // Per solution: a rigorous upper bound on max_i |f_i| at its midpoint, f the sub-problem's
+  // equations (model::residual_bound).
+  std::vector<double> residuals;
+  Stats stats;
+  bool complete = true;
+  std::vector<prune::Counters> counters;  // per contractor of the strategy
+};
+
+struct CaseResult {
+  std::vector<SubResult> subproblems;
+  std::vector<std::string> contractor_names;
+  Stats total;
+  std::vector<prune::Counters> counters;  // summed over sub-problems
+  bool complete = true;
+  std::string stop_reason;  // why incomplete
+  bool rigorous = true;     // false: float pruning (--arith float), exclusion not proved
+  double seconds = 0;       // wall clock of the whole run
+};
+
+}  // namespace linkbox::solve

@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""Fails when a source file includes a project header from a folder its folder may not use
+(lib/README.md, "Rules"): the data flows one way, case file -> input -> formulate -> solve
+(prune) -> verify -> report, and no layer reaches back up."""
+import os
+import re
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# folder -> folders (or single headers) it may include, besides itself.
+ALLOWED = {
+    "interval": set(),
+    "model": {"interval"},
+    "input": {"interval", "model"},
+    "formulate": {"interval", "model", "input"},
+    "newton": {"interval", "model"},
+    # prune depends on the model (and the shared Newton kernel) only.
+    "prune": {"interval", "model", "newton"},
+    "solve": {"interval", "model", "input", "formulate", "newton", "prune"},
+    # verify never depends on a contractor: from solve and prune only the plain result data.
+    "verify": {"interval", "model", "formulate", "newton", "solve/result.hpp", "prune/counters.hpp"},
+    # report serialises; it proves nothing (no certification entry points).
+    "report": {"interval", "model", "input", "formulate", "solve", "prune", "verify/cluster_report.hpp", "newton/certify.hpp"},
+    "cli": {"interval", "model", "input", "formulate", "solve", "prune", "verify", "report", "newton"},
+}
+
+INCLUDE = re.compile(r'#include "([a-z_]+)/([^"]+)"')
+
+
+def folder_of(path):
+    rel = os.path.relpath(path, ROOT).split(os.sep)
+    return rel[0] if rel[0] == "verify" else rel[1]
+
+
+def main():
+    bad = []
+    for top in ("lib", "verify"):
+        for dirpath, _, files in os.walk(os.path.join(ROOT, top)):
+            for name in files:
+                if not name.endswith((".hpp", ".cpp")):
+                    continue
+                path = os.path.join(dirpath, name)
+                here = folder_of(path)
+                with open(path) as f:
+                    for n, line in enumerate(f, 1):
+                        m = INCLUDE.match(line.strip())
+                        if not m or m.group(1) == here:
+                            continue
+                        allowed = ALLOWED.get(here, set())
+                        if m.group(1) not in allowed and f"{m.group(1)}/{m.group(2)}" not in allowed:
+                            bad.append(f"{os.path.relpath(path, ROOT)}:{n}: {here}/ may not include {m.group(1)}/{m.group(2)}")
+    for b in bad:
+        print(b)
+    print("layering holds" if not bad else f"{len(bad)} include(s) break the layering")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,62 @@
+#pragma once
+// What verification says about each cluster of solution boxes, and about the run.
+#include "newton/certify.hpp"
+#include "formulate/formulation.hpp"
+
+#include <string>
+#include <vector>
+
+namespace linkbox::verify {
+
+// empty: proved to hold no root (a spurious cluster of the search).
+enum class ClusterStatus { certified, unverified, curve, empty };
+const char* to_string(ClusterStatus s);
+
+struct CurveCrossing {
+  size_t box = 0;  // index into ClusterReport::boxes
+  // The chart the certificate is in: the cluster's, or the member box's own when no single
+  // chart holds the whole cluster (a curve winding around a whole turn).
+  std::uint64_t chart = 0;
+  newton::Certificate certificate;
+  // The natural equations left out of the crossing's system (one fewer kept than unknowns);
+  // each must contain 0 on the crossing box.
+  std::vector<int> dropped_equations;
+};
+
+struct ClusterReport {
+  ClusterStatus status = ClusterStatus::unverified;
+  std::string reason;                           // unverified: why; certified: notes
+  std::vector<std::pair<size_t, size_t>> boxes;  // (sub-problem, solution index)
+  Box hull;                                     // output variables (angles unwrapped)
+  std::uint64_t chart = 0;
+  newton::Certificate certificate;                      // in the chart's natural unknowns
+  // Natural systems that are not square: the equations `certificate` is about (a square
+  // subsystem; empty = all), or the one whose range over certificate.box misses 0.
+  std::vector<int> subsystem;
+  int excluding_equation = -1;
+  Box root;                                     // certified box in the output variables
+  std::vector<formulate::MatrixOutput> outputs;  // declared outputs over the certified box
+  std::vector<CurveCrossing> crossings;         // curve clusters
+  int crossings_certified = 0;
+  int duplicate_of = -1;  // certified, but the same root as that cluster's
+  // Upper bounds: the largest rigorous residual max_i |f_i(midpoint)| of a member box in its
+  // sub-problem's system; for a certified cluster, per member (same order as `boxes`) the
+  // farthest distance (max norm, output variables, angles modulo 2 pi) from a point of the
+  // member to a point of `root`, and the largest of those.
+  double max_residual = 0;
+  std::vector<double> distances;
+  double max_distance = 0;
+};
+
+struct VerifyReport {
+  std::vector<ClusterReport> clusters;
+  int certified_roots = 0;
+  int unverified = 0;
+  int curves = 0;
+  int empty = 0;
+  bool exact = false;  // "exactly N roots in the domain" holds
+  std::string headline;
+  double seconds = 0;
+};
+
+}  // namespace linkbox::verify

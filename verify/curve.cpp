@@ -1,0 +1,137 @@
+#include "verify/curve.hpp"
+
+#include "newton/float_system.hpp"
+#include "verify/subsystem.hpp"
+
+#include <Eigen/SVD>
+
+#include <algorithm>
+
+namespace linkbox::verify {
+
+namespace {
+
+// The k-th largest singular value (k >= 1): how well the rows span k dimensions.
+double singular_value(const Eigen::MatrixXd& j, size_t k) {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(j);
+  const auto& sv = svd.singularValues();
+  return static_cast<Eigen::Index>(k) <= sv.size() && k > 0 ? sv(k - 1) : 0;
+}
+
+// Whether the float Jacobian (at least as many equations as unknowns) is rank-deficient at a
+// solution near the box's centre. A heuristic that only decides how to report a cluster.
+bool rank_deficient_near(const std::vector<model::Polynomial>& f, const Box& x) {
+  if (f.size() < x.size() || f.empty()) return false;
+  const newton::FloatSystem s(f, x.size());
+  const Eigen::VectorXd p = s.solve_from(newton::centre(x));
+  if (!(s.values(p).norm() < 1e-9)) return false;
+  const Eigen::MatrixXd j = s.jacobian(p);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(j);
+  const auto& sv = svd.singularValues();
+  return !(sv(sv.size() - 1) > 1e-6 * sv(0));
+}
+
+// Equations to leave out so that `keep` remain, chosen one at a time at the point p: each
+// time the one whose removal leaves rows that best span `keep` dimensions (for a square
+// system rank-deficient along a curve, keep = n - 1: the dependent equation).
+std::vector<int> dependent_equations(const std::vector<model::Polynomial>& f, const Eigen::VectorXd& p,
+                                     size_t keep) {
+  const Eigen::MatrixXd j = newton::FloatSystem(f, p.size()).jacobian(p);
+  std::vector<int> dropped;
+  while (f.size() - dropped.size() > keep) {
+    int best = -1;
+    double best_sv = -1;
+    for (int r = 0; r < j.rows(); ++r) {
+      if (std::find(dropped.begin(), dropped.end(), r) != dropped.end()) continue;
+      auto without = dropped;
+      without.push_back(r);
+      const auto rows = rows_except(f.size(), without);
+      Eigen::MatrixXd rest(rows.size(), j.cols());
+      for (size_t k = 0; k < rows.size(); ++k) rest.row(k) = j.row(rows[k]);
+      const double sv = singular_value(rest, keep);
+      if (sv > best_sv) best_sv = sv, best = r;
+    }
+    dropped.push_back(best);
+  }
+  return dropped;
+}
+
+// Certifies member by member that a solution curve crosses it: in the member's chart, with
+// one equation dropped where the Jacobian is rank deficient, the unknown that varies most
+// fixed at the middle of the box.
+void certify_curve(const formulate::Formulation& f, formulate::NaturalSystems& systems,
+                   const std::vector<Box>& members, const std::vector<std::uint64_t>& charts, ClusterReport& c,
+                   const newton::NewtonOptions& options) {
+  for (size_t k = 0; k < c.boxes.size(); ++k) {
+    CurveCrossing x;
+    x.box = k;
+    x.chart = charts[k];
+    const auto& sys = systems(x.chart);
+    Box natural;
+    try {
+      natural = f.output_to_natural(x.chart, members[k]);
+    } catch (const std::exception&) {
+      c.crossings.push_back(x);
+      continue;
+    }
+    // n - 1 equations make a curve; the others are left out.
+    const size_t n = sys.unknowns.size();
+    if (sys.equations.size() >= n) x.dropped_equations = dependent_equations(sys.equations, newton::centre(natural), n - 1);
+    const auto eqs = pick(sys.equations, rows_except(sys.equations.size(), x.dropped_equations));
+    // Fix the variable that varies most across the box (the curve's direction there).
+    x.certificate = newton::certify_curve_crossing(eqs, natural, widest_dimension(natural), options);
+    // A crossing of the subsystem is a point of the solution set only where the equations
+    // left out vanish too; near an ill-conditioned isolated root they do not.
+    for (int d : x.dropped_equations)
+      if (x.certificate.status == newton::Status::certified && !zero_in(sys.equations[d].eval(x.certificate.box)))
+        x.certificate.status = newton::Status::unverified;
+    c.crossings_certified += x.certificate.status == newton::Status::certified;
+    c.crossings.push_back(std::move(x));
+  }
+}
+
+}  // namespace
+
+void classify_curve(const formulate::Formulation& f, formulate::NaturalSystems& systems, const std::vector<Box>& member,
+                    bool chart_holds_cluster, ClusterReport& c, const newton::NewtonOptions& options) {
+  if (c.status != ClusterStatus::unverified) return;
+  const auto& sys = systems(c.chart);
+  const size_t n = sys.unknowns.size();
+  // Curve: many boxes spanning far more than any one of them, with a rank-deficient
+  // Jacobian near the boxes (or fewer equations than unknowns).
+  double box_width = 0;
+  for (auto& b : member) box_width = std::max(box_width, max_width(b));
+  // Below ~1e-6 a curve cannot be told from an ill-conditioned isolated root in double
+  // precision (a root's enclosure stretches by eps / sigma_min): such clusters stay
+  // unverified rather than be called curves.
+  const bool long_cluster = c.boxes.size() >= 4 && max_width(c.hull) > 2 * box_width && max_width(c.hull) > 1e-6;
+  // Members are analysed in the cluster's chart when it holds the whole cluster, else
+  // each in its own: a curve that winds around a whole turn (gimbal lock) fits no single
+  // chart of half-angle tangents, but every small box does.
+  std::vector<std::uint64_t> charts(member.size(), c.chart);
+  if (!chart_holds_cluster)
+    for (size_t k = 0; k < member.size(); ++k) charts[k] = f.chart_for(member[k]);
+  bool rank_deficient = sys.equations.size() + 1 == n;
+  for (size_t k = 0; n > 0 && sys.equations.size() >= n && !rank_deficient && k < member.size();
+       k += std::max<size_t>(1, member.size() / 5)) {
+    try {
+      rank_deficient = rank_deficient_near(systems(charts[k]).equations, f.output_to_natural(charts[k], member[k]));
+    } catch (const std::exception&) {
+    }
+  }
+  if (!long_cluster || !rank_deficient) return;
+  // Called a curve only when a solution curve of the subsystem, on which the dropped
+  // equation vanishes, crosses at least half of its boxes; a singular isolated root (a
+  // double root, an ill-conditioned one) does not, and stays unverified.
+  ClusterReport curve = c;
+  certify_curve(f, systems, member, charts, curve, options);
+  if (2 * static_cast<size_t>(curve.crossings_certified) >= curve.boxes.size()) {
+    c = std::move(curve);
+    c.status = ClusterStatus::curve;
+    c.reason = chart_holds_cluster
+                   ? "positive-dimensional: boxes follow a curve"
+                   : "positive-dimensional: boxes follow a curve around a whole turn (each box in its own chart)";
+  }
+}
+
+}  // namespace linkbox::verify

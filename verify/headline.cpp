@@ -1,0 +1,56 @@
+#include "verify/headline.hpp"
+
+#include <map>
+
+namespace linkbox::verify {
+
+namespace {
+
+// Reasons are counted in the headline without their trailing detail in parentheses.
+std::string without_detail(const std::string& reason) {
+  const size_t open = reason.rfind(" (");
+  return !reason.empty() && reason.back() == ')' && open != std::string::npos ? reason.substr(0, open) : reason;
+}
+
+}  // namespace
+
+void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseResult& result) {
+  bool all_unique = true;
+  std::map<std::string, int> reasons;
+  for (auto& c : report.clusters) {
+    if (c.status == ClusterStatus::certified && c.duplicate_of < 0) {
+      report.certified_roots++;
+      all_unique = all_unique && c.certificate.unique_in_hull;
+      if (!c.certificate.unique_in_hull) reasons[without_detail(c.reason)]++;
+    } else if (c.status == ClusterStatus::curve) {
+      report.curves++;
+    } else if (c.status == ClusterStatus::empty) {
+      report.empty++;
+    } else if (c.status == ClusterStatus::unverified) {
+      report.unverified++;
+      reasons[without_detail(c.reason)]++;
+    }
+  }
+  report.exact = result.complete && result.rigorous && report.unverified == 0 && report.curves == 0 && all_unique &&
+                 overlaps_unresolved == 0;
+  const int n = report.certified_roots;
+  if (report.exact) {
+    report.headline = "exactly " + std::to_string(n) + " root" + (n == 1 ? "" : "s") +
+                      " in the domain, each in its certified box";
+    return;
+  }
+  report.headline = std::to_string(n) + " certified";
+  if (report.curves) report.headline += ", " + std::to_string(report.curves) + " curve cluster(s)";
+  if (report.unverified) report.headline += ", " + std::to_string(report.unverified) + " unresolved";
+  if (report.empty) report.headline += ", " + std::to_string(report.empty) + " proved empty";
+  if (overlaps_unresolved) report.headline += ", " + std::to_string(overlaps_unresolved) + " overlapping roots unresolved";
+  if (!result.complete) report.headline += "; search incomplete (" + result.stop_reason + ")";
+  if (!result.rigorous)
+    report.headline = "UNVERIFIED search (--arith float: boxes were discarded on float evidence, roots may be missing): " +
+                      report.headline;
+  std::string why;
+  for (auto& [r, k] : reasons) why += (why.empty() ? "" : "; ") + r + " x" + std::to_string(k);
+  if (!why.empty()) report.headline += " (" + why + ")";
+}
+
+}  // namespace linkbox::verify

@@ -1,0 +1,132 @@
+#include "verify/isolated.hpp"
+
+#include "newton/float_system.hpp"
+#include "verify/cluster.hpp"
+#include "verify/subsystem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace linkbox::verify {
+
+namespace {
+
+// Square subsystems of an overdetermined system to try, best first: the rows a pivoted QR
+// of the Jacobian's transpose keeps at the point p, then, when one equation is extra, each
+// other choice of the one to leave out.
+std::vector<std::vector<int>> square_subsystems(const std::vector<model::Polynomial>& f, const Eigen::VectorXd& p) {
+  const Eigen::MatrixXd j = newton::FloatSystem(f, p.size()).jacobian(p);
+  std::vector<std::vector<int>> out;
+  if (j.allFinite()) out.push_back(newton::independent_rows(j));
+  if (f.size() == static_cast<size_t>(p.size()) + 1)
+    for (int r = static_cast<int>(f.size()); r-- > 0;) {
+      auto rows = rows_except(f.size(), {r});
+      if (std::find(out.begin(), out.end(), rows) == out.end()) out.push_back(rows);
+    }
+  return out;
+}
+
+std::string not_square(size_t equations, size_t unknowns) {
+  return "natural system not square: " + std::to_string(equations) + " equations in " + std::to_string(unknowns) +
+         " unknowns";
+}
+
+std::string count(size_t n, const std::string& one, const std::string& many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// A natural system that is not square certifies nothing, but can still prove a cluster
+// empty: an equation whose range over the cluster misses 0, or (more equations than
+// unknowns) a square subsystem whose Newton image misses it. Otherwise, with more equations
+// than unknowns, a square subsystem with a unique root in the cluster and the other
+// equations containing 0 there is said so: a consistent candidate, never a certified root
+// (the other equations are only evaluated, and a root of the subsystem need not be one of
+// them all).
+void examine_not_square(const formulate::NaturalSystem& sys, const Box& start, ClusterReport& c,
+                        const newton::NewtonOptions& options) {
+  const size_t e = sys.equations.size(), u = sys.unknowns.size();
+  c.reason = not_square(e, u) + (e < u ? " (fewer equations: mobile)" : "");
+  for (size_t i = 0; i < e; ++i)
+    if (!zero_in(sys.equations[i].eval(start))) {
+      c.status = ClusterStatus::empty;
+      c.excluding_equation = static_cast<int>(i);
+      c.certificate.box = start;
+      c.reason = "proved to hold no root: natural equation " + std::to_string(i) + " misses 0 over the cluster";
+      return;
+    }
+  if (e < u) return;
+  // The least-squares point nearest the centre: where subsystems are chosen, and a start for
+  // Newton when the centre leads elsewhere (a subsystem has roots the others do not share).
+  const Eigen::VectorXd p = newton::FloatSystem(sys.equations, u).solve_from(newton::centre(start));
+  Box near_p;
+  if (p.allFinite())
+    for (int k = 0; k < p.size(); ++k) near_p.push_back(Interval(p(k)) + Interval(-1e-6, 1e-6) * (1 + std::fabs(p(k))));
+  for (const auto& rows : square_subsystems(sys.equations, p)) {
+    const auto eqs = pick(sys.equations, rows);
+    newton::Certificate cert = newton::certify_root(eqs, start, sys.domain, options);
+    if (cert.reason == newton::Reason::no_root) {
+      c.status = ClusterStatus::empty;
+      c.subsystem = rows;
+      c.certificate = std::move(cert);
+      c.reason = "proved to hold no root: the Newton image of " + std::to_string(u) + " of the " + std::to_string(e) +
+                 " natural equations misses the cluster";
+      return;
+    }
+    if (cert.status != newton::Status::certified && !near_p.empty()) {
+      newton::Certificate from_p = newton::certify_root(eqs, near_p, sys.domain, options);
+      if (from_p.status == newton::Status::certified && overlaps(from_p.image, start)) cert = std::move(from_p);
+      else if (from_p.status == newton::Status::certified)
+        c.reason = "overdetermined: " + std::to_string(u) + " of " + count(e, "equation", "equations") +
+                   " have a root next to the cluster, none found in it (not proved empty)";
+    }
+    if (cert.status != newton::Status::certified) continue;
+    bool others_vanish = true;
+    for (int r : rows_except(e, rows)) others_vanish = others_vanish && zero_in(sys.equations[r].eval(cert.box));
+    if (!others_vanish) continue;
+    std::ostringstream w;
+    w << std::setprecision(2) << max_width(cert.box);
+    const std::string consistent = "overdetermined: " + std::to_string(u) + " of " + count(e, "equation", "equations") +
+                 " have a unique root in the box; the other " + count(e - u, "contains", "contain") +
+                 " 0 there (width " + w.str() + ")";
+    c.subsystem = rows;
+    c.certificate = std::move(cert);
+    c.reason = consistent;
+    return;
+  }
+}
+
+}  // namespace
+
+void certify_isolated(const formulate::Formulation& f, const formulate::NaturalSystem& sys, const Box& start,
+                      const std::vector<Box>& members, const std::vector<bool>& periodic, ClusterReport& c,
+                      const newton::NewtonOptions& options) {
+  const size_t n = sys.unknowns.size();
+  if (n == 0) {
+    c.reason = "no natural system to certify in" + (sys.missing.empty() ? "" : ": " + sys.missing);
+    return;
+  }
+  if (sys.equations.size() != n) {
+    examine_not_square(sys, start, c, options);
+    return;
+  }
+  c.certificate = newton::certify_root(sys.equations, start, sys.domain, options);
+  if (c.certificate.status == newton::Status::certified && !c.certificate.root_in_domain && !sys.domain.empty()) {
+    c.reason = "root on the domain boundary: certified in a slightly enlarged domain only";
+  } else if (c.certificate.status == newton::Status::certified) {
+    c.status = ClusterStatus::certified;
+    c.root = f.natural_to_output(c.chart, c.certificate.box);
+    c.outputs = f.natural_outputs(c.chart, c.certificate.box);
+    for (auto& b : members) c.distances.push_back(farthest_distance(b, c.root, periodic));
+    c.max_distance = *std::max_element(c.distances.begin(), c.distances.end());
+    if (!c.certificate.unique_in_hull) c.reason = "root certified; its cluster hull not proved free of other roots";
+  } else if (c.certificate.reason == newton::Reason::no_root) {
+    c.status = ClusterStatus::empty;
+    c.reason = "proved to hold no root: the Newton image misses the cluster";
+  } else {
+    c.reason = to_string(c.certificate.reason);
+  }
+}
+
+}  // namespace linkbox::verify

@@ -1,0 +1,16 @@
+#pragma once
+// The root a cluster should hold, certified by interval Newton in the natural system of the
+// cluster's chart (`start` = the cluster's hull there). A natural system that is not square
+// certifies nothing but can still prove the cluster empty, or (overdetermined) find a
+// consistent candidate; `c` says which.
+#include "verify/cluster_report.hpp"
+
+namespace linkbox::verify {
+
+// `members` are the cluster's boxes in the output variables (for the distances to a
+// certified root); `periodic` flags the angle dimensions.
+void certify_isolated(const formulate::Formulation& f, const formulate::NaturalSystem& sys, const Box& start,
+                      const std::vector<Box>& members, const std::vector<bool>& periodic, ClusterReport& c,
+                      const newton::NewtonOptions& options);
+
+}  // namespace linkbox::verify
