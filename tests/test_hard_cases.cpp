@@ -139,12 +139,22 @@ TEST_CASE("hard: two roots 5e-9 apart near 0.01 are certified separately", "[har
     CHECK(s.v.certified_roots == 2);
     for (auto* c : certified(s)) CHECK(roots_in(c->root, known, false) == 1);
   }
-  // Coarser boxes cannot separate them: one root certified, never "exactly 1".
+  // Coarser boxes cannot separate them without Newton: one root certified, never "exactly 1".
   Run coarse = run_case("cases/hard/close-roots.toml", "hc4,lp", 1e-8);
   check_honest(coarse);
   CHECK_FALSE(coarse.v.exact);
   CHECK(coarse.v.certified_roots <= 2);
   for (auto* c : certified(coarse)) CHECK(roots_in(c->root, known, false) == 1);
+  // With Newton in the search, uncertified solution boxes are searched again with a smaller
+  // sigma: the default sigma (1e-4, 20 000x the gap) gives "exactly 2".
+  for (const char* prune : {"auto", "hc4,newton"}) {
+    INFO("prune " << prune);
+    Run d = run_case("cases/hard/close-roots.toml", prune, 1e-4);
+    check_honest(d);
+    CHECK(d.v.exact);
+    CHECK(d.v.certified_roots == 2);
+    for (auto* c : certified(d)) CHECK(roots_in(c->root, known, false) == 1);
+  }
 }
 
 TEST_CASE("hard: two roots 5e-9 apart near 1/3 are never miscounted", "[hard]") {

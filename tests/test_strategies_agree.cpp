@@ -29,10 +29,14 @@ std::vector<Box> certified_roots(const formulate::LoadedCase& c, const std::vect
 
 TEST_CASE("strategies agree on the certified roots of the bundled cases", "[strategies]") {
   const std::vector<std::pair<std::string, std::vector<std::vector<std::string>>>> runs = {
-      {"cases/spherical/wrist.toml", {{"trapezoid"}, {"trapezoid", "newton"}, {"hc4", "newton"}, {"lp"}, {"hc4", "lp"}}},
-      {"cases/spherical/agile-eye.toml", {{"trapezoid"}, {"trapezoid", "newton"}, {"trapezoid", "lp"}}},
-      {"cases/polynomial/circle-line.toml", {{"hc4"}, {"newton"}, {"lp"}, {"hc4", "lp"}}},
-      {"cases/polynomial/planted-cubic.toml", {{"hc4"}, {"newton"}, {"hc4", "lp"}}},
+      // "auto" first: it must find every root that a fixed strategy certifies, and no other.
+      {"cases/spherical/wrist.toml", {{"auto"}, {"trapezoid"}, {"trapezoid", "newton"}, {"hc4", "newton"}, {"lp"}, {"hc4", "lp"}}},
+      {"cases/spherical/agile-eye.toml", {{"auto"}, {"trapezoid"}, {"trapezoid", "newton"}, {"trapezoid", "lp"}}},
+      {"cases/polynomial/circle-line.toml", {{"auto"}, {"hc4"}, {"newton"}, {"lp"}, {"hc4", "lp"}}},
+      {"cases/polynomial/planted-cubic.toml", {{"auto"}, {"hc4"}, {"newton"}, {"hc4", "lp"}}},
+      {"cases/benchmarks/kin1.toml", {{"auto"}, {"hc4", "newton"}, {"hc4", "newton", "/", "lp"}}},
+      {"cases/benchmarks/cyclohexan3d.toml", {{"auto"}, {"hc4", "newton"}, {"hc4", "lp"}}},
+      {"cases/linkages/6r-rigid.toml", {{"auto"}, {"hc4", "/", "newton"}}},
   };
   for (auto& [file, strategies] : runs) {
     formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + file);

@@ -5,6 +5,7 @@
 #include "verify/headline.hpp"
 #include "verify/isolated.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -37,7 +38,7 @@ Box unwrap(const Box& b, const Box& ref, bool angles) {
 // Two clusters whose certified roots overlap are the same root when one certificate covers
 // both boxes (the later one is marked duplicate_of the first); otherwise both stay, and the
 // run is not exact. Returns the number of overlaps left unresolved.
-int merge_duplicates(const formulate::Formulation& f, formulate::NaturalSystems& systems, VerifyReport& report,
+int merge_duplicates(const formulate::Formulation& f, VerifyReport& report,
                      const std::vector<bool>& periodic, const newton::NewtonOptions& options) {
   std::vector<Box> roots;       // certified root boxes (output variables)
   std::vector<size_t> root_of;  // cluster index of each
@@ -52,7 +53,7 @@ int merge_duplicates(const formulate::Formulation& f, formulate::NaturalSystems&
     ClusterReport& first = report.clusters[root_of[g[0]]];
     for (size_t k = 1; k < g.size(); ++k) {
       ClusterReport& other = report.clusters[root_of[g[k]]];
-      const auto& sys = systems(first.chart);
+      const auto& sys = f.natural(first.chart);
       Box joint = first.certificate.box;
       try {
         joint = hull(joint, f.output_to_natural(first.chart, unwrap(other.root, first.root, f.outputs_are_angles())));
@@ -80,15 +81,30 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
   std::vector<Box> outputs;
   std::vector<std::pair<size_t, size_t>> where;
   std::vector<double> residual;
+  std::vector<Box> uncertified;
+  std::vector<int> uncertified_index;
+  std::vector<std::vector<int>> groups;
   for (auto& s : result.subproblems)
     for (size_t k = 0; k < s.solutions.size(); ++k) {
+      const int i = static_cast<int>(outputs.size());
       outputs.push_back(f.to_output(s.index, s.solutions[k]));
       where.emplace_back(s.index, k);
       residual.push_back(s.residuals.at(k));
+      // A box certified during the search holds exactly one root: a cluster of its own.
+      if (k < s.certified.size() && s.certified[k]) {
+        groups.push_back({i});
+      } else {
+        uncertified.push_back(outputs.back());
+        uncertified_index.push_back(i);
+      }
     }
   const std::vector<bool> periodic(f.output_names().size(), angles);
-  formulate::NaturalSystems systems(f);
-  for (auto& g : cluster_boxes(outputs, periodic)) {
+  for (auto& g : cluster_boxes(uncertified, periodic)) {
+    for (int& i : g) i = uncertified_index[i];
+    groups.push_back(std::move(g));
+  }
+  std::sort(groups.begin(), groups.end());  // by smallest member: independent of which were certified
+  for (auto& g : groups) {
     ClusterReport c;
     std::vector<Box> member;
     for (int i : g) {
@@ -105,11 +121,11 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     } catch (const std::exception& e) {
       c.reason = std::string("cluster too wide for a chart: ") + e.what();
     }
-    if (!start.empty()) certify_isolated(f, systems(c.chart), start, member, periodic, c, options.newton);
-    classify_curve(f, systems, member, !start.empty(), c, options.newton);
+    if (!start.empty()) certify_isolated(f, f.natural(c.chart), start, member, periodic, c, options.newton);
+    classify_curve(f, member, !start.empty(), c, options.newton);
     report.clusters.push_back(std::move(c));
   }
-  const int overlaps_unresolved = merge_duplicates(f, systems, report, periodic, options.newton);
+  const int overlaps_unresolved = merge_duplicates(f, report, periodic, options.newton);
   summarise(report, overlaps_unresolved, result);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;

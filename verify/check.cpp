@@ -74,7 +74,6 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
     solutions[{sub, seen[sub]++}] = box_from(s.at("box"));
   }
   int certified = 0;
-  formulate::NaturalSystems systems(f);
   const std::vector<bool> periodic(f.output_names().size(), f.outputs_are_angles());
   const auto& clusters = j.at("clusters");
   for (size_t i = 0; i < clusters.size(); ++i) {
@@ -82,7 +81,7 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
     const std::string where = "cluster " + std::to_string(i);
     const std::string status = c.at("status");
     const auto chart = c.at("chart").get<std::uint64_t>();
-    const auto& sys = systems(chart);
+    const auto& sys = f.natural(chart);
     const Box hull = box_from(c.at("hull"));
     for (auto& m : c.at("members")) {
       auto it = solutions.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
@@ -142,7 +141,7 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
         ++out.checked;
         // Each crossing in its own chart: a curve around a whole turn fits no single one.
         const std::uint64_t crossing_chart = x.value("chart", chart);
-        const auto& full = systems(crossing_chart).equations;
+        const auto& full = f.natural(crossing_chart).equations;
         std::vector<model::Polynomial> eqs, dropped;
         std::vector<bool> kept(full.size(), true);
         bool indices_ok = true;

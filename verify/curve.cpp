@@ -59,14 +59,13 @@ std::vector<int> dependent_equations(const std::vector<model::Polynomial>& f, co
 // Certifies member by member that a solution curve crosses it: in the member's chart, with
 // one equation dropped where the Jacobian is rank deficient, the unknown that varies most
 // fixed at the middle of the box.
-void certify_curve(const formulate::Formulation& f, formulate::NaturalSystems& systems,
-                   const std::vector<Box>& members, const std::vector<std::uint64_t>& charts, ClusterReport& c,
+void certify_curve(const formulate::Formulation& f, const std::vector<Box>& members, const std::vector<std::uint64_t>& charts, ClusterReport& c,
                    const newton::NewtonOptions& options) {
   for (size_t k = 0; k < c.boxes.size(); ++k) {
     CurveCrossing x;
     x.box = k;
     x.chart = charts[k];
-    const auto& sys = systems(x.chart);
+    const auto& sys = f.natural(x.chart);
     Box natural;
     try {
       natural = f.output_to_natural(x.chart, members[k]);
@@ -92,10 +91,10 @@ void certify_curve(const formulate::Formulation& f, formulate::NaturalSystems& s
 
 }  // namespace
 
-void classify_curve(const formulate::Formulation& f, formulate::NaturalSystems& systems, const std::vector<Box>& member,
+void classify_curve(const formulate::Formulation& f, const std::vector<Box>& member,
                     bool chart_holds_cluster, ClusterReport& c, const newton::NewtonOptions& options) {
   if (c.status != ClusterStatus::unverified) return;
-  const auto& sys = systems(c.chart);
+  const auto& sys = f.natural(c.chart);
   const size_t n = sys.unknowns.size();
   // Curve: many boxes spanning far more than any one of them, with a rank-deficient
   // Jacobian near the boxes (or fewer equations than unknowns).
@@ -115,7 +114,7 @@ void classify_curve(const formulate::Formulation& f, formulate::NaturalSystems& 
   for (size_t k = 0; n > 0 && sys.equations.size() >= n && !rank_deficient && k < member.size();
        k += std::max<size_t>(1, member.size() / 5)) {
     try {
-      rank_deficient = rank_deficient_near(systems(charts[k]).equations, f.output_to_natural(charts[k], member[k]));
+      rank_deficient = rank_deficient_near(f.natural(charts[k]).equations, f.output_to_natural(charts[k], member[k]));
     } catch (const std::exception&) {
     }
   }
@@ -124,7 +123,7 @@ void classify_curve(const formulate::Formulation& f, formulate::NaturalSystems& 
   // equation vanishes, crosses at least half of its boxes; a singular isolated root (a
   // double root, an ill-conditioned one) does not, and stays unverified.
   ClusterReport curve = c;
-  certify_curve(f, systems, member, charts, curve, options);
+  certify_curve(f, member, charts, curve, options);
   if (2 * static_cast<size_t>(curve.crossings_certified) >= curve.boxes.size()) {
     c = std::move(curve);
     c.status = ClusterStatus::curve;

@@ -9,7 +9,7 @@ namespace linkbox::verify {
 // deficient near its boxes, and certified crossings of the curve cover at least half of
 // them. `member` are its boxes in the output variables; `chart_holds_cluster` is false when
 // no single chart holds the cluster (each box is then analysed in its own).
-void classify_curve(const formulate::Formulation& f, formulate::NaturalSystems& systems, const std::vector<Box>& member,
+void classify_curve(const formulate::Formulation& f, const std::vector<Box>& member,
                     bool chart_holds_cluster, ClusterReport& c, const newton::NewtonOptions& options);
 
 }  // namespace linkbox::verify

@@ -111,7 +111,7 @@ void certify_isolated(const formulate::Formulation& f, const formulate::NaturalS
     examine_not_square(sys, start, c, options);
     return;
   }
-  c.certificate = newton::certify_root(sys.equations, start, sys.domain, options);
+  c.certificate = newton::certify_root(newton::SquareSystem::all_unknown(sys.compiled), start, sys.domain, options);
   if (c.certificate.status == newton::Status::certified && !c.certificate.root_in_domain && !sys.domain.empty()) {
     c.reason = "root on the domain boundary: certified in a slightly enlarged domain only";
   } else if (c.certificate.status == newton::Status::certified) {

@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <cstdlib>
+#include <unistd.h>
 #include <fstream>
 #include <map>
 
@@ -92,7 +94,14 @@ void add_solve_options(CLI::App& cmd, SolveCommand& s) {
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, solve::Order>{{"dfs", solve::Order::depth_first}, {"bfs", solve::Order::breadth_first}}));
   s.prune = solve::strategy_name(o.strategy.contractors);  // the default
-  cmd.add_option("--prune", s.prune, "comma-separated contractors, e.g. trapezoid");
+  cmd.add_option("--prune", s.prune,
+                 "contractors: auto (default), or a comma-separated list of trapezoid, hc4, newton, lp; '/' starts a "
+                 "stage that runs only when the earlier ones stall, e.g. hc4,newton/lp");
+  cmd.add_option("--bisect", o.bisect, "auto (default), widest, round-robin or smear")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, solve::Bisect>{{"auto", solve::Bisect::automatic},
+                                                                              {"widest", solve::Bisect::widest},
+                                                                              {"round-robin", solve::Bisect::round_robin},
+                                                                              {"smear", solve::Bisect::smear}}));
   cmd.add_option("--lp", o.strategy.lp, "LP backend: safe or exact")
       ->transform(CLI::CheckedTransformer(std::map<std::string, prune::lp::LpBackend>{
           {"safe", prune::lp::LpBackend::safe}, {"exact", prune::lp::LpBackend::exact}}));
@@ -107,9 +116,19 @@ void add_solve_options(CLI::App& cmd, SolveCommand& s) {
   cmd.add_flag("--no-verify", s.no_verify, "skip clustering and certification");
 }
 
+// CLP's LAPACK may be OpenBLAS, whose thread pool starts at load time and busy-waits for
+// work for a while: about 0.15 s of CPU per run, which is most of a small case. linkbox makes
+// no BLAS calls worth threading; the setting is read at load, so set it and start again once.
+void single_threaded_blas(char** argv) {
+  if (std::getenv("OPENBLAS_NUM_THREADS")) return;
+  setenv("OPENBLAS_NUM_THREADS", "1", 1);
+  execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  single_threaded_blas(argv);
   CLI::App app{"linkbox: verified position analysis of linkages by interval branch-and-prune"};
   app.require_subcommand(1);
   SolveCommand solve_cmd;

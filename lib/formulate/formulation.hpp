@@ -1,12 +1,14 @@
 #pragma once
 // What a case becomes: one or more sub-problems (systems with a start box) plus the map
 // from a search box back to the user's output variables (joint angles for mechanisms).
+#include "model/compiled.hpp"
 #include "model/lph.hpp"
 #include "model/polynomial.hpp"
 
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <mutex>
 
 #include <string>
 #include <vector>
@@ -20,6 +22,16 @@ struct SubProblem {
   // The same system in L/P/H form when the formulation builds one (linkages); the LP
   // strategy derives it from `system` otherwise. Variable indices agree with `system`.
   std::shared_ptr<const model::LphSystem> lph;
+  // When `system` is that L/P/H form: the equations before lifting, over its first (primary)
+  // variables. Their roots are the projections of the lifted roots, so contractors may work
+  // on them instead, and propagation and Newton are far cheaper there.
+  std::shared_ptr<const model::System> unlifted;
+  // The spherical paper's formulation: trapezoid clipping and widest-side bisection are its
+  // method, and what "auto" runs on it.
+  bool clipping = false;
+
+  // What propagation, Newton and clipping work on.
+  const model::System& pruned() const { return unlifted ? *unlifted : system; }
 };
 
 // A declared output evaluated on a box, e.g. a platform rotation matrix (row-major).
@@ -37,6 +49,8 @@ struct NaturalSystem {
   std::vector<std::string> unknowns;
   Box domain;  // where roots count; empty = unbounded (angles: every chart covers the circle)
   std::string missing;  // no equations: why the formulation has none (empty: not given)
+  // When square: the equations compiled for interval Newton, over `unknowns`.
+  std::shared_ptr<const model::CompiledSystem> compiled;
 };
 
 class Formulation {
@@ -63,22 +77,15 @@ class Formulation {
   virtual Box output_to_natural(std::uint64_t, const Box& output) const { return output; }
   virtual Box natural_to_output(std::uint64_t, const Box& natural) const { return natural; }
   virtual std::vector<MatrixOutput> natural_outputs(std::uint64_t, const Box&) const { return {}; }
-};
 
-// Natural systems by chart, each built once: a curve that winds around a whole turn is
-// analysed box by box, each in its own chart, and many boxes share a chart.
-class NaturalSystems {
- public:
-  explicit NaturalSystems(const Formulation& formulation) : formulation_(formulation) {}
-  const NaturalSystem& operator()(std::uint64_t chart) {
-    auto it = built_.find(chart);
-    if (it == built_.end()) it = built_.emplace(chart, formulation_.natural_system(chart)).first;
-    return it->second;
-  }
+  // natural_system(chart), built and compiled once and shared by every thread: the search's
+  // certifier, verification and the report ask for the same charts many times (a linkage's
+  // natural system is a symbolic product of loop transforms).
+  const NaturalSystem& natural(std::uint64_t chart) const;
 
  private:
-  const Formulation& formulation_;
-  std::map<std::uint64_t, NaturalSystem> built_;
+  mutable std::mutex natural_mutex_;
+  mutable std::map<std::uint64_t, std::unique_ptr<const NaturalSystem>> natural_;
 };
 
 // A polynomial system as typed by a user: one sub-problem, outputs are its variables.

@@ -330,6 +330,7 @@ void LinkageFormulation::build_model() {
   sub_.system = lph_polynomials(*lph, names);
   for (size_t v = 0; v < primary.variables.size(); ++v) sub_.split_dims.push_back(static_cast<int>(v));
   sub_.lph = std::move(lph);
+  sub_.unlifted = std::make_shared<const model::System>(std::move(primary));
 }
 
 ModelSize LinkageFormulation::model_size() const {

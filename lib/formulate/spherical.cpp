@@ -142,6 +142,7 @@ std::array<model::Polynomial, 3> SphericalFormulation::expand_loop(size_t loop, 
 
 SubProblem SphericalFormulation::subproblem(size_t index) const {
   SubProblem s;
+  s.clipping = true;
   s.label = "shift ";
   for (size_t j = 0; j < case_.joints.size(); ++j) s.label += (index >> j & 1) ? '1' : '0';
   for (size_t j = 0; j < case_.joints.size(); ++j) {
@@ -179,7 +180,7 @@ std::uint64_t SphericalFormulation::chart_for(const Box& output_hull) const { re
 
 NaturalSystem SphericalFormulation::natural_system(std::uint64_t chart) const {
   SubProblem s = subproblem(chart);
-  return {std::move(s.system.equations), s.system.names(), {}, {}};
+  return {std::move(s.system.equations), s.system.names(), {}, {}, nullptr};
 }
 
 Box SphericalFormulation::output_to_natural(std::uint64_t chart, const Box& output) const {

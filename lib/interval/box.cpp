@@ -14,17 +14,20 @@ void for_dims(size_t n, std::span<const int> dims, F&& f) {
 }
 }  // namespace
 
+// One rounding guard for all sides: a guard per side (width_up) costs two mode switches each.
 double max_width(const Box& box, std::span<const int> dims) {
+  RoundingGuard up;
   double w = 0;
-  for_dims(box.size(), dims, [&](int i) { w = std::max(w, width_up(box[i])); });
+  for_dims(box.size(), dims, [&](int i) { w = std::max(w, up.sub_up(box[i].upper(), box[i].lower())); });
   return w;
 }
 
 int widest_dimension(const Box& box, std::span<const int> dims) {
+  RoundingGuard up;
   int best = -1;
   double bw = -1;
   for_dims(box.size(), dims, [&](int i) {
-    double w = width_up(box[i]);
+    const double w = up.sub_up(box[i].upper(), box[i].lower());
     if (w > bw) bw = w, best = i;
   });
   return best;

@@ -347,6 +347,10 @@ Certificate certify_root(const std::vector<model::Polynomial>& f, const Box& hul
   return certify_square(*s, hull, domain, options);
 }
 
+Certificate certify_root(const SquareSystem& f, const Box& hull, const Box& domain, const NewtonOptions& options) {
+  return certify_square(f, hull, domain, options);
+}
+
 Certificate certify_curve_crossing(const std::vector<model::Polynomial>& f, const Box& box, int parameter,
                                    const NewtonOptions& options) {
   Certificate bad;

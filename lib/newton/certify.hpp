@@ -62,6 +62,10 @@ struct Certificate {
 // first (which can also prove it root-free), then Newton from its centre.
 Certificate certify_root(const std::vector<model::Polynomial>& f, const Box& hull,
                          const Box& domain = {}, const NewtonOptions& options = {});
+// The same on a system built once (every variable unknown), for callers that certify many
+// boxes of one system.
+Certificate certify_root(const SquareSystem& f, const Box& hull, const Box& domain = {},
+                         const NewtonOptions& options = {});
 
 // Curve crossing: `f` has n-1 equations in n variables (a curve). Fixes variable `parameter`
 // at the midpoint of its side of `box` and certifies that exactly one point of the curve

@@ -5,29 +5,48 @@
 
 namespace linkbox::newton {
 
-SquareSystem::SquareSystem(std::vector<model::Polynomial> equations, std::vector<int> unknowns,
-                           Box base)
-    : equations_(std::move(equations)), unknowns_(std::move(unknowns)), base_(std::move(base)) {
-  if (equations_.size() != unknowns_.size())
+namespace {
+
+std::shared_ptr<const model::CompiledSystem> compile(const std::vector<model::Polynomial>& equations, size_t n) {
+  for (auto& e : equations)
+    for (int v : e.variables())
+      if (v >= static_cast<int>(n)) throw std::invalid_argument("SquareSystem: equation uses a variable beyond the box");
+  return std::make_shared<const model::CompiledSystem>(equations, n);
+}
+
+}  // namespace
+
+SquareSystem::SquareSystem(std::vector<model::Polynomial> equations, std::vector<int> unknowns, Box base)
+    : SquareSystem(compile(equations, base.size()), std::move(unknowns), base) {}  // base copied: argument order is unspecified
+
+SquareSystem::SquareSystem(std::shared_ptr<const model::CompiledSystem> compiled, std::vector<int> unknowns, Box base)
+    : unknowns_(std::move(unknowns)), base_(std::move(base)), compiled_(std::move(compiled)) {
+  if (static_cast<size_t>(compiled_->rows()) != unknowns_.size())
     throw std::invalid_argument("SquareSystem: as many unknowns as equations expected");
+  if (static_cast<size_t>(compiled_->cols()) != base_.size())
+    throw std::invalid_argument("SquareSystem: the system and the box differ in size");
   const int n = static_cast<int>(base_.size());
   std::vector<bool> seen(base_.size(), false);
   for (int u : unknowns_) {
     if (u < 0 || u >= n || seen[u]) throw std::invalid_argument("SquareSystem: bad unknown index");
     seen[u] = true;
   }
-  for (auto& e : equations_)
-    for (int v : e.variables())
-      if (v >= n) throw std::invalid_argument("SquareSystem: equation uses a variable beyond the box");
-  partials_.resize(equations_.size());
-  for (size_t i = 0; i < equations_.size(); ++i)
-    for (int u : unknowns_) partials_[i].push_back(equations_[i].derivative(u));
+  std::vector<int> column(base_.size(), -1);
+  for (size_t k = 0; k < unknowns_.size(); ++k) column[unknowns_[k]] = static_cast<int>(k);
+  for (int e = 0; e < compiled_->nonzeros(); ++e) unknown_column_.push_back(column[compiled_->entry_col(e)]);
 }
 
 SquareSystem SquareSystem::all_unknown(const std::vector<model::Polynomial>& equations, size_t n) {
   std::vector<int> all(n);
   std::iota(all.begin(), all.end(), 0);
   return SquareSystem(equations, std::move(all), Box(n, Interval(0.0)));
+}
+
+SquareSystem SquareSystem::all_unknown(std::shared_ptr<const model::CompiledSystem> compiled) {
+  std::vector<int> all(compiled->cols());
+  std::iota(all.begin(), all.end(), 0);
+  const size_t n = all.size();
+  return SquareSystem(std::move(compiled), std::move(all), Box(n, Interval(0.0)));
 }
 
 Box SquareSystem::embed(const Box& x) const {
@@ -43,17 +62,25 @@ Box SquareSystem::restrict(const Box& full) const {
 }
 
 IVector SquareSystem::values(const Box& x) const {
-  Box full = embed(x);
+  std::vector<FastInterval> v(compiled_->rows());
+  {
+    RoundingGuard guard;
+    compiled_->values(embed(x), v.data());
+  }
   IVector f(size());
-  for (int i = 0; i < size(); ++i) f(i) = equations_[i].eval(full);
+  for (int i = 0; i < size(); ++i) f(i) = Interval(v[i].lower(), v[i].upper());
   return f;
 }
 
 IMatrix SquareSystem::jacobian(const Box& x) const {
-  Box full = embed(x);
-  IMatrix j(size(), size());
-  for (int i = 0; i < size(); ++i)
-    for (int k = 0; k < size(); ++k) j(i, k) = partials_[i][k].eval(full);
+  std::vector<FastInterval> d(compiled_->nonzeros());
+  {
+    RoundingGuard guard;
+    compiled_->jacobian(embed(x), d.data());
+  }
+  IMatrix j = IMatrix::Constant(size(), size(), Interval(0.0));
+  for (int e = 0; e < compiled_->nonzeros(); ++e)
+    if (const int k = unknown_column_[e]; k >= 0) j(compiled_->entry_row(e), k) = Interval(d[e].lower(), d[e].upper());
   return j;
 }
 

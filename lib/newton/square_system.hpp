@@ -2,9 +2,11 @@
 // A square polynomial system as interval Newton sees it: n equations solved for n chosen
 // unknowns, every other variable held at a fixed (interval) value. Fixing variables is how a
 // curve (n-1 equations in n variables) becomes square for a crossing certificate.
+#include "model/compiled.hpp"
 #include "model/polynomial.hpp"
 #include "newton/interval_eigen.hpp"
 
+#include <memory>
 #include <vector>
 
 namespace linkbox::newton {
@@ -16,9 +18,13 @@ class SquareSystem {
   // when the counts differ, an index is out of range or an equation names a variable
   // beyond `base`.
   SquareSystem(std::vector<model::Polynomial> equations, std::vector<int> unknowns, Box base);
+  // The same from a system compiled once (e.g. a formulation's natural system, shared by
+  // every thread): `compiled` has as many rows as `unknowns` and base.size() columns.
+  SquareSystem(std::shared_ptr<const model::CompiledSystem> compiled, std::vector<int> unknowns, Box base);
 
   // Every variable unknown: the plain square system in `n` variables.
   static SquareSystem all_unknown(const std::vector<model::Polynomial>& equations, size_t n);
+  static SquareSystem all_unknown(std::shared_ptr<const model::CompiledSystem> compiled);
 
   int size() const { return static_cast<int>(unknowns_.size()); }
   const std::vector<int>& unknowns() const { return unknowns_; }
@@ -34,10 +40,11 @@ class SquareSystem {
   Eigen::MatrixXd jacobian_at(const Eigen::VectorXd& x) const;
 
  private:
-  std::vector<model::Polynomial> equations_;
-  std::vector<std::vector<model::Polynomial>> partials_;  // [equation][unknown]
   std::vector<int> unknowns_;
   Box base_;
+  // Evaluated over all variables of `base`; Jacobian entries of unknowns are picked out.
+  std::shared_ptr<const model::CompiledSystem> compiled_;
+  std::vector<int> unknown_column_;  // per compiled Jacobian entry: column among the unknowns, or -1
 };
 
 Box point_box(const Eigen::VectorXd& x);

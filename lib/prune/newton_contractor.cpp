@@ -1,48 +1,99 @@
 #include "prune/newton_contractor.hpp"
 
 #include <Eigen/LU>
-
-#include <stdexcept>
+#include <Eigen/QR>
 
 namespace linkbox::prune {
 
 namespace {
-newton::SquareSystem make_system(const std::vector<model::Polynomial>& equations, size_t n, Arith arith) {
-  if (equations.size() != n)
-    throw std::invalid_argument("--prune newton needs a square system; this one has " +
-                                std::to_string(equations.size()) + " equations in " + std::to_string(n) + " variables");
-  std::vector<model::Polynomial> used;
-  for (auto& p : equations) {
-    model::Polynomial q;
-    for (auto& [powers, c] : p.terms()) q += model::Polynomial::monomial(powers, coefficient_for(arith, c));
-    used.push_back(std::move(q));
-  }
-  return newton::SquareSystem::all_unknown(used, n);
-}
+// An interval that provably misses 0. NaN bounds (an overflowed evaluation) prove nothing.
+bool excludes_zero(const FastInterval& x) { return x.lower() > 0 || x.upper() < 0; }
 }  // namespace
 
-IntervalNewton::IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, Arith arith,
-                               newton::Method method)
-    : system_(make_system(equations, variables, arith)), method_(method) {}
+IntervalNewton::IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, Arith arith)
+    : system_(equations, variables, arith), arith_(arith) {}
 
 Outcome IntervalNewton::contract(Box& box) {
-  // Where the Jacobian is singular Newton removes nothing; the plain range test still does.
-  const newton::IVector f = system_.values(box);
-  for (int i = 0; i < f.size(); ++i)
-    if (!zero_in(f(i))) return Outcome::empty;
-  const Eigen::MatrixXd jm = newton::midpoint(system_.jacobian(box));
-  if (!jm.allFinite()) return Outcome::unchanged;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm);
-  if (!(lu.rcond() > 1e-14)) return Outcome::unchanged;
-  const Eigen::MatrixXd c = lu.inverse();
-  if (!c.allFinite()) return Outcome::unchanged;
-  const newton::NewtonStep step = newton::newton_step(method_, system_, box, c);
-  if (step.excluded) return Outcome::empty;
+  return with_rounding(arith_, [&] { return step(box); });
+}
+
+Outcome IntervalNewton::step(Box& box) {
+  unique_ = false;
+  const int m = system_.rows(), n = system_.cols(), nnz = system_.nonzeros();
+  f_.resize(m);
+  j_.resize(nnz);
+  system_.evaluate(box, f_.data(), j_.data());
+  // The range test: where the Jacobian is singular Newton removes nothing, this still does.
+  for (int i = 0; i < m; ++i)
+    if (excludes_zero(f_[i])) return Outcome::empty;
+  if (m < n || n == 0) return Outcome::unchanged;
+
+  // The float preconditioner: only how much is removed depends on it.
+  jm_.setZero(m, n);
+  for (int e = 0; e < nnz; ++e) jm_(system_.entry_row(e), system_.entry_col(e)) = 0.5 * j_[e].lower() + 0.5 * j_[e].upper();
+  if (!jm_.allFinite()) return Outcome::unchanged;
+  if (m == n) {
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm_);
+    if (!(lu.rcond() > 1e-14)) return Outcome::unchanged;
+    c_ = lu.inverse();
+  } else {
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(jm_);
+    if (cod.rank() < n) return Outcome::unchanged;
+    c_ = cod.pseudoInverse();
+  }
+  if (!c_.allFinite()) return Outcome::unchanged;
+
+  y_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    if (!is_finite(box[i])) return Outcome::unchanged;
+    y_[i] = std::clamp(0.5 * box[i].lower() + 0.5 * box[i].upper(), box[i].lower(), box[i].upper());
+  }
+  system_.values_at(y_.data(), f_.data());  // F(y), enclosed
+
+  // A = C F'(X) (n x n) from the sparse Jacobian; b = -C F(y).
+  a_.assign(static_cast<size_t>(n) * n, FastInterval(0.0));
+  for (int e = 0; e < nnz; ++e) {
+    const int r = system_.entry_row(e), k = system_.entry_col(e);
+    for (int i = 0; i < n; ++i)
+      if (const double c = c_(i, r); c != 0) a_[static_cast<size_t>(i) * n + k] += c * j_[e];
+  }
+  b_.assign(n, FastInterval(0.0));
+  for (int i = 0; i < n; ++i)
+    for (int r = 0; r < m; ++r)
+      if (const double c = c_(i, r); c != 0) b_[i] -= c * f_[r];
+
+  // Gauss-Seidel on A (x - y) = b, x - y in X - y, each row using the rows narrowed before it.
+  d_.resize(n);
+  for (int i = 0; i < n; ++i) d_[i] = FastInterval(box[i].lower(), box[i].upper()) - y_[i];
+  bool interior = true;
+  for (int i = 0; i < n; ++i) {
+    const FastInterval& aii = a_[static_cast<size_t>(i) * n + i];
+    if (!(aii.lower() > 0 || aii.upper() < 0)) {  // contains 0 (or NaN): this row proves nothing
+      interior = false;
+      continue;
+    }
+    FastInterval s = b_[i];
+    for (int j = 0; j < n; ++j)
+      if (j != i) s -= a_[static_cast<size_t>(i) * n + j] * d_[j];
+    const FastInterval ni = s / aii;
+    const FastInterval moved = y_[i] + ni;
+    interior = interior && box[i].lower() < moved.lower() && moved.upper() < box[i].upper();
+    // NaN bounds of ni drop out of max/min: nothing is narrowed on them.
+    const double lo = std::max(d_[i].lower(), ni.lower()), hi = std::min(d_[i].upper(), ni.upper());
+    if (!(lo <= hi)) return Outcome::empty;
+    d_[i] = FastInterval(lo, hi);
+  }
+  unique_ = interior;
+
   bool shrunk = false;
-  for (size_t i = 0; i < box.size(); ++i) {
-    Interval x;
-    if (!intersect(box[i], step.image[i], x)) return Outcome::empty;
-    if (x.lower() != box[i].lower() || x.upper() != box[i].upper()) box[i] = x, shrunk = true;
+  for (int i = 0; i < n; ++i) {
+    const FastInterval x = y_[i] + d_[i];
+    const double lo = std::max(box[i].lower(), x.lower()), hi = std::min(box[i].upper(), x.upper());
+    if (!(lo <= hi)) return Outcome::empty;
+    if (lo != box[i].lower() || hi != box[i].upper()) {
+      box[i] = Interval(lo, hi);
+      shrunk = true;
+    }
   }
   return shrunk ? Outcome::shrunk : Outcome::unchanged;
 }

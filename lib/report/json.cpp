@@ -19,7 +19,8 @@ json box_json(const Box& b) {
 namespace {
 json stats_json(const solve::Stats& s) {
   return {{"processed", s.processed}, {"empty", s.empty}, {"split", s.split},
-          {"solution_boxes", s.solution}, {"shrinks", s.shrinks}, {"seconds", s.seconds}};
+          {"solution_boxes", s.solution}, {"certified_in_search", s.certified}, {"certify_calls", s.certify_calls},
+          {"shrinks", s.shrinks}, {"seconds", s.seconds}};
 }
 }  // namespace
 
@@ -37,6 +38,7 @@ json result_json(const std::string& case_name, const std::string& case_file,
                      {"rho", p.rho},
                      {"order", p.order == solve::Order::depth_first ? "dfs" : "bfs"},
                      {"prune", solve::strategy_name(options.strategy.contractors)},
+                     {"bisect", solve::to_string(options.bisect)},
                      {"lp", prune::lp::to_string(options.strategy.lp)},
                      {"arith", to_string(options.strategy.arith)},
                      {"time_limit", p.time_limit},
@@ -50,6 +52,13 @@ json result_json(const std::string& case_name, const std::string& case_file,
       j["model"] = {{"primary", m.primary.size()}, {"dummy", m.variables.size() - m.primary.size()},
                     {"linear", m.linear.size()}, {"parabolic", m.parabolic.size()}, {"hyperbolic", m.hyperbolic.size()}};
     }
+  }
+  j["strategy"] = solve::strategy_name(result.strategy);  // what ran, "auto" resolved
+  j["bisect"] = result.bisect;
+  if (!result.subproblems.empty() && result.subproblems[0].race.size() > 1) {
+    json race = json::array();  // "auto": the candidates raced, each one's work, the winner last
+    for (auto& [name, work] : result.subproblems[0].race) race.push_back({{"strategy", name}, {"work", work}});
+    j["race"] = race;
   }
   j["complete"] = result.complete;
   if (!result.complete) j["stop_reason"] = result.stop_reason;
@@ -80,7 +89,8 @@ json result_json(const std::string& case_name, const std::string& case_file,
       json sol = {{"subproblem", s.index},
                   {"box", box_json(formulation.to_output(s.index, box))},
                   {"search_box", box_json(box)},
-                  {"residual", s.residuals.at(k)}};
+                  {"residual", s.residuals.at(k)},
+                  {"certified_in_search", k < s.certified.size() && s.certified[k]}};
       for (auto& m : formulation.declared_outputs(s.index, box)) {
         json rows = json::array();
         for (auto& row : m.rows) rows.push_back(box_json(row));
@@ -135,7 +145,7 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
     json members = json::array();
     for (auto [s, k] : c.boxes) members.push_back({s, k});
     cj["members"] = members;
-    cj["natural_unknowns"] = f.natural_system(c.chart).unknowns;
+    cj["natural_unknowns"] = f.natural(c.chart).unknowns;
     if (c.status == verify::ClusterStatus::certified) {
       cj["root"] = box_json(c.root);
       for (auto& m : c.outputs) {

@@ -6,10 +6,28 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
                    const solve::CaseResult& r) {
   const auto& f = *c.formulation;
   std::fprintf(out, "case      %s (%s, %s)\n", c.name.c_str(), c.kind.c_str(), c.file.c_str());
-  std::fprintf(out, "strategy  prune=%s sigma=%g rho=%g order=%s threads=%d%s\n",
-               solve::strategy_name(r.contractor_names).c_str(), o.params.sigma, o.params.rho,
+  const std::string asked = solve::strategy_name(o.strategy.contractors), ran = solve::strategy_name(r.strategy);
+  std::string race_line;
+  std::string prune = asked == ran || ran.empty() ? asked : asked + " (ran " + ran + ")";
+  if (!r.subproblems.empty() && r.subproblems[0].race.size() > 1) {
+    // Work in boxes + LPs weighted as boxes (solve::kLpWork), the winner last.
+    std::string race;
+    for (auto& [name, work] : r.subproblems[0].race) {
+      char w[64];
+      std::snprintf(w, sizeof w, " %s %.3g,", name.c_str(), work);
+      race += w;
+    }
+    race.pop_back();
+    race_line = "race      work (boxes + LPs as boxes):" + race + "\n";
+  }
+  const std::string asked_bisect = solve::to_string(o.bisect);
+  const std::string bisect =
+      asked_bisect == r.bisect || r.bisect.empty() ? asked_bisect : asked_bisect + " (" + r.bisect + ")";
+  std::fprintf(out, "strategy  prune=%s bisect=%s sigma=%g rho=%g order=%s threads=%d%s\n", prune.c_str(), bisect.c_str(),
+               o.params.sigma, o.params.rho,
                o.params.order == solve::Order::depth_first ? "dfs" : "bfs", o.threads,
                r.rigorous ? "" : "  arith=float (UNVERIFIED: boxes discarded on float evidence)");
+  std::fputs(race_line.c_str(), out);
   if (f.subproblem_count() == 1)
     if (auto sub = f.subproblem(0); sub.lph)
       std::fprintf(out, "model     %zu primary + %zu dummy variables; %zu linear, %zu parabolic, %zu hyperbolic equations\n",

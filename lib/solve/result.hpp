@@ -15,6 +15,8 @@ struct Stats {
   long solution = 0;
   long split = 0;
   long shrinks = 0;    // contractor passes
+  long certified = 0;  // solution boxes certified during the search (a subset of `solution`)
+  long certify_calls = 0;
   double seconds = 0;
   Stats& operator+=(const Stats& o);
 };
@@ -28,14 +30,24 @@ struct SubResult {
   // Per solution: a rigorous upper bound on max_i |f_i| at its midpoint, f the sub-problem's
   // equations (model::residual_bound).
   std::vector<double> residuals;
+  // Per solution: certified during the search (exactly one root of the case in it, proved in
+  // the natural system); refined no further.
+  std::vector<char> certified;
   Stats stats;
   bool complete = true;
   std::vector<prune::Counters> counters;  // per contractor of the strategy
+  std::vector<std::string> strategy;      // what ran ("auto" resolved; "/" between stages)
+  std::string bisect;                     // the bisection rule ("auto" resolved)
+  // When "auto" raced candidates: each one's name and work done (boxes + kLpWork per LP),
+  // the winner last.
+  std::vector<std::pair<std::string, double>> race;
 };
 
 struct CaseResult {
   std::vector<SubResult> subproblems;
-  std::vector<std::string> contractor_names;
+  std::vector<std::string> strategy;          // what ran (see SubResult::strategy)
+  std::string bisect;                         // likewise
+  std::vector<std::string> contractor_names;  // one per counter
   Stats total;
   std::vector<prune::Counters> counters;  // summed over sub-problems
   bool complete = true;

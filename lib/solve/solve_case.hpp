@@ -3,6 +3,7 @@
 // sub-problems; results are stored by sub-problem index, so output does not depend on
 // scheduling), with shared limits and progress on stderr.
 #include "formulate/formulation.hpp"
+#include "solve/bisector.hpp"
 #include "solve/branch_and_prune.hpp"
 #include "solve/result.hpp"
 #include "solve/strategy.hpp"
@@ -12,6 +13,7 @@ namespace linkbox::solve {
 struct RunOptions {
   Params params;
   StrategyOptions strategy;
+  Bisect bisect = Bisect::automatic;
   int threads = 1;
   bool progress = true;  // progress lines on stderr for runs over a second
 };

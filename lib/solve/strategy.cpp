@@ -7,53 +7,93 @@
 #include "prune/newton_contractor.hpp"
 #include "prune/trapezoid.hpp"
 
-#include <sstream>
 #include <stdexcept>
 
 namespace linkbox::solve {
 
 using namespace prune;
 
-std::unique_ptr<Sequence> make_strategy(const StrategyOptions& options, const formulate::SubProblem& sub) {
-  std::vector<std::unique_ptr<Contractor>> members;
+namespace {
+
+std::unique_ptr<Contractor> make_contractor(const std::string& name, const StrategyOptions& options,
+                                            const formulate::SubProblem& sub) {
+  const model::System& pruned = sub.pruned();
+  if (name == "trapezoid") {
+    if (!pruned.is_multi_affine())
+      throw std::invalid_argument("--prune trapezoid needs a multi-affine system; this one is not");
+    return std::make_unique<Trapezoid>(pruned.equations, options.arith);
+  }
+  if (name == "lp") {
+    const auto backend = options.arith != Arith::verified ? lp::LpBackend::float_trusted : options.lp;
+    if (sub.lph) return std::make_unique<LpRelaxation>(*sub.lph, backend);
+    // Any polynomial system, lifted to L/P/H form around the search's own variables.
+    model::LphSystem lph = formulate::to_lph(sub.system);
+    auto inner = std::make_unique<LpRelaxation>(lph, backend);
+    return std::make_unique<Lifted>(std::move(lph), sub.system.variables.size(), std::move(inner));
+  }
+  if (name == "newton") return std::make_unique<IntervalNewton>(pruned.equations, pruned.variables.size(), options.arith);
+  if (name == "hc4") return std::make_unique<Hc4>(pruned.equations, options.arith);
+  throw std::invalid_argument("unknown pruning strategy '" + name + "' (known: auto, trapezoid, lp, hc4, newton)");
+}
+
+}  // namespace
+
+std::vector<std::vector<std::string>> auto_candidates(const formulate::SubProblem& sub) {
+  if (sub.clipping && sub.pruned().is_multi_affine()) return {{"trapezoid"}};
+  return {{"hc4", "newton"}, {"hc4", "newton", "/", "lp"}};
+}
+
+Strategy make_strategy(const StrategyOptions& options, const formulate::SubProblem& sub) {
+  Strategy s;
   for (auto& name : options.contractors) {
-    if (name == "trapezoid") {
-      if (!sub.system.is_multi_affine())
-        throw std::invalid_argument("--prune trapezoid needs a multi-affine system; this one is not");
-      members.push_back(std::make_unique<Trapezoid>(sub.system.equations, options.arith));
-    } else if (name == "lp") {
-      const auto backend = options.arith != Arith::verified ? lp::LpBackend::float_trusted : options.lp;
-      if (sub.lph) {
-        members.push_back(std::make_unique<LpRelaxation>(*sub.lph, backend));
-      } else {
-        // Any polynomial system, lifted to L/P/H form around the search's own variables.
-        model::LphSystem lph = formulate::to_lph(sub.system);
-        auto inner = std::make_unique<LpRelaxation>(lph, backend);
-        members.push_back(std::make_unique<Lifted>(std::move(lph), sub.system.variables.size(), std::move(inner)));
-      }
-    } else if (name == "newton") {
-      members.push_back(std::make_unique<IntervalNewton>(sub.system.equations, sub.system.variables.size(), options.arith));
-    } else if (name == "hc4") {
-      members.push_back(std::make_unique<Hc4>(sub.system.equations, options.arith));
+    if (name == "auto") {
+      const auto chosen = auto_candidates(sub).front();
+      s.names.insert(s.names.end(), chosen.begin(), chosen.end());
     } else {
-      throw std::invalid_argument("unknown pruning strategy '" + name + "'");
+      s.names.push_back(name);
     }
   }
+  std::vector<std::unique_ptr<Contractor>> members;
+  std::vector<int> stages;
+  int stage = 0;
+  for (auto& name : s.names) {
+    if (name == "/") {
+      stage += !members.empty() && stages.back() == stage;
+      continue;
+    }
+    members.push_back(make_contractor(name, options, sub));
+    stages.push_back(stage);
+  }
   if (members.empty()) throw std::invalid_argument("no pruning strategy given");
-  return std::make_unique<Sequence>(std::move(members), sub.split_dims);
+  s.sequence = std::make_unique<Sequence>(std::move(members), sub.split_dims, std::move(stages), options.stall);
+  return s;
 }
 
 std::vector<std::string> parse_strategy_list(const std::string& text) {
   std::vector<std::string> r;
-  std::stringstream ss(text);
-  for (std::string item; std::getline(ss, item, ',');)
+  std::string item;
+  auto flush = [&] {
     if (!item.empty()) r.push_back(item);
+    item.clear();
+  };
+  for (char c : text) {
+    if (c == ',' || c == '/') {
+      flush();
+      if (c == '/') r.push_back("/");
+    } else if (c != ' ') {
+      item += c;
+    }
+  }
+  flush();
   return r;
 }
 
 std::string strategy_name(const std::vector<std::string>& contractors) {
   std::string n;
-  for (auto& c : contractors) n += (n.empty() ? "" : ",") + c;
+  for (size_t i = 0; i < contractors.size(); ++i) {
+    const bool stage = contractors[i] == "/";
+    n += stage ? "/" : (i == 0 || contractors[i - 1] == "/" ? "" : ",") + contractors[i];
+  }
   return n;
 }
 

@@ -318,7 +318,7 @@ def applicable(kind, unknowns, strategy):
 
 def solve_once(cli, path, prune, lp, arith, sigma, time_limit, tmp):
     out = os.path.join(tmp, "r-%d-%d.json" % (os.getpid(), time.monotonic_ns()))
-    cmd = [cli, "solve", path, "--prune", prune, "--lp", lp, "--arith", arith, "--sigma", repr(sigma), "--quiet",
+    cmd = [cli, "solve", path, "--bisect", "widest", "--prune", prune, "--lp", lp, "--arith", arith, "--sigma", repr(sigma), "--quiet",
            "--time-limit", repr(time_limit), "--json", out]
     t0 = time.monotonic()
     try:

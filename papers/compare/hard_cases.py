@@ -75,7 +75,7 @@ def dist(box, p, angles):
 
 def run(cli, path, prune, sigma, arith, tmp):
     out = os.path.join(tmp, "h.json")
-    cmd = [cli, "solve", os.path.join(ROOT, path), "--prune", prune, "--sigma", repr(sigma), "--arith", arith,
+    cmd = [cli, "solve", os.path.join(ROOT, path), "--bisect", "widest", "--prune", prune, "--sigma", repr(sigma), "--arith", arith,
            "--quiet", "--json", out, "--time-limit", "600"]
     p = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     if p.returncode != 0:

@@ -97,7 +97,7 @@ def model_size(res):
 
 def solve_once(binary, case, args, out_json, extra=()):
     """Runs linkbox once; returns (parsed JSON, wall seconds, CPU seconds of the child, error)."""
-    cmd = [binary, "solve", os.path.join(ROOT, case["file"]), "--prune", args.prune, "--lp", args.lp,
+    cmd = [binary, "solve", os.path.join(ROOT, case["file"]), "--bisect", "widest", "--prune", args.prune, "--lp", args.lp,
            "--sigma", repr(case["sigma"]), "--rho", repr(case["rho"]), "--quiet", "--json", out_json]
     if args.time_limit > 0:
         cmd += ["--time-limit", repr(float(args.time_limit))]

@@ -59,7 +59,7 @@ def run(binary, case, runs):
     out = os.path.join("/tmp", "linkbox-table1-%s.json" % os.path.basename(case))
     times, result = [], None
     for _ in range(runs):
-        subprocess.run([binary, "solve", os.path.join(ROOT, case), "--sigma", str(SIGMA), "--rho", str(RHO),
+        subprocess.run([binary, "solve", os.path.join(ROOT, case), "--bisect", "widest", "--sigma", str(SIGMA), "--rho", str(RHO),
                         "--quiet", "--json", out], check=True, stdout=subprocess.DEVNULL)
         with open(out) as f:
             result = json.load(f)

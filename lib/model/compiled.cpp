@@ -1,0 +1,106 @@
+#include "model/compiled.hpp"
+
+#include <stdexcept>
+
+namespace linkbox::model {
+
+CompiledSystem::CompiledSystem(const std::vector<Polynomial>& equations, size_t variables, Arith arith)
+    : involved_(equations.size()), max_degree_(variables, 1) {
+  for (size_t i = 0; i < equations.size(); ++i) {
+    const Polynomial& p = equations[i];
+    for (int v : p.variables()) {
+      if (v < 0 || v >= static_cast<int>(variables))
+        throw std::invalid_argument("CompiledSystem: an equation uses a variable beyond the box");
+      max_degree_[v] = std::max(max_degree_[v], p.degree_in(v));
+      involved_[i].push_back(v);
+    }
+    values_.push_back(add(p, arith));
+  }
+  for (size_t i = 0; i < equations.size(); ++i)
+    for (int v : involved_[i]) {
+      entry_row_.push_back(static_cast<int>(i));
+      entry_col_.push_back(v);
+      partials_.push_back(add(equations[i].derivative(v), arith));
+    }
+  int offset = 0;
+  for (int d : max_degree_) {
+    power_offset_.push_back(offset);
+    offset += d;
+  }
+  power_count_ = offset;
+}
+
+CompiledSystem::Compiled CompiledSystem::add(const Polynomial& p, Arith arith) {
+  Compiled c{static_cast<int>(terms_.size()), 0};
+  for (auto& [powers, coef] : p.terms()) {
+    const Interval k = coefficient_for(arith, coef);
+    Term t{FastInterval(k.lower(), k.upper()), static_cast<int>(factors_.size()), 0};
+    for (auto [v, e] : powers) factors_.emplace_back(v, e);
+    t.end = static_cast<int>(factors_.size());
+    terms_.push_back(t);
+  }
+  c.end = static_cast<int>(terms_.size());
+  return c;
+}
+
+namespace {
+FastInterval* scratch(int size) {
+  thread_local std::vector<FastInterval> powers;
+  if (static_cast<int>(powers.size()) < size) powers.resize(size);
+  return powers.data();
+}
+}  // namespace
+
+FastInterval* CompiledSystem::fill_powers(const Box& x) const {
+  FastInterval* powers = scratch(power_count_);
+  for (size_t v = 0; v < max_degree_.size(); ++v) {
+    FastInterval* p = powers + power_offset_[v];
+    const FastInterval xv(x[v].lower(), x[v].upper());
+    p[0] = xv;
+    // Each power as such, not as repeated products: x^2 of [-1, 1] is [0, 1], not [-1, 1].
+    for (int e = 2; e <= max_degree_[v]; ++e) p[e - 1] = boost::numeric::pow(xv, e);
+  }
+  return powers;
+}
+
+FastInterval CompiledSystem::sum(const Compiled& c, const FastInterval* powers) const {
+  FastInterval s(0.0);
+  for (int t = c.begin; t < c.end; ++t) {
+    const Term& term = terms_[t];
+    FastInterval m = term.coef;
+    for (int k = term.begin; k < term.end; ++k) {
+      const auto [v, e] = factors_[k];
+      m *= powers[power_offset_[v] + e - 1];
+    }
+    s += m;
+  }
+  return s;
+}
+
+void CompiledSystem::values(const Box& x, FastInterval* f) const {
+  const FastInterval* powers = fill_powers(x);
+  for (size_t i = 0; i < values_.size(); ++i) f[i] = sum(values_[i], powers);
+}
+
+void CompiledSystem::jacobian(const Box& x, FastInterval* j) const {
+  const FastInterval* powers = fill_powers(x);
+  for (size_t e = 0; e < partials_.size(); ++e) j[e] = sum(partials_[e], powers);
+}
+
+void CompiledSystem::evaluate(const Box& x, FastInterval* f, FastInterval* j) const {
+  const FastInterval* powers = fill_powers(x);
+  for (size_t i = 0; i < values_.size(); ++i) f[i] = sum(values_[i], powers);
+  for (size_t e = 0; e < partials_.size(); ++e) j[e] = sum(partials_[e], powers);
+}
+
+void CompiledSystem::values_at(const double* y, FastInterval* f) const {
+  FastInterval* powers = scratch(power_count_);
+  for (size_t v = 0; v < max_degree_.size(); ++v) {
+    FastInterval* p = powers + power_offset_[v];
+    p[0] = FastInterval(y[v]);
+    for (int e = 2; e <= max_degree_[v]; ++e) p[e - 1] = p[e - 2] * p[0];  // a point: products are as tight
+  }
+  for (size_t i = 0; i < values_.size(); ++i) f[i] = sum(values_[i], powers);
+}
+
+}  // namespace linkbox::model

@@ -1,0 +1,59 @@
+#pragma once
+// A polynomial system flattened for fast interval evaluation: the values F(X) and the sparse
+// Jacobian J(X) from one table of powers per box, in FastInterval arithmetic. Immutable once
+// built, so one instance serves every thread (the table of powers is per thread). Callers run it
+// inside one RoundingGuard (outward rounding; see interval.hpp), or without one for the
+// unverified float variant. model::Polynomial stays the reference: it is what these tables
+// are built from and what tests compare against.
+#include "model/polynomial.hpp"
+
+#include <vector>
+
+namespace linkbox::model {
+
+class CompiledSystem {
+ public:
+  CompiledSystem() = default;
+  // `arith` = float_unverified takes midpoint coefficients (the unverified variant).
+  CompiledSystem(const std::vector<Polynomial>& equations, size_t variables, Arith arith = Arith::verified);
+
+  int rows() const { return static_cast<int>(values_.size()); }
+  int cols() const { return static_cast<int>(max_degree_.size()); }
+
+  // Nonzero pattern of the Jacobian, row by row: entry e is d f_row(e) / d x_col(e).
+  int nonzeros() const { return static_cast<int>(entry_row_.size()); }
+  int entry_row(int e) const { return entry_row_[e]; }
+  int entry_col(int e) const { return entry_col_[e]; }
+  // Variables each equation involves (sorted), e.g. for smear and for sparse products.
+  const std::vector<std::vector<int>>& involved() const { return involved_; }
+
+  // Each call fills the table of powers of `x` first; `values` gets rows() entries, `jacobian`
+  // nonzeros() entries in pattern order. Both from the same table in evaluate().
+  void values(const Box& x, FastInterval* f) const;
+  void jacobian(const Box& x, FastInterval* j) const;
+  void evaluate(const Box& x, FastInterval* f, FastInterval* j) const;
+  // Values at the point y (each coordinate a double), as degenerate intervals.
+  void values_at(const double* y, FastInterval* f) const;
+
+ private:
+  struct Term {
+    FastInterval coef;
+    int begin, end;  // factors_[begin, end): (variable, exponent >= 1)
+  };
+  struct Compiled {
+    int begin, end;  // terms_[begin, end)
+  };
+  Compiled add(const Polynomial& p, Arith arith);
+  FastInterval* fill_powers(const Box& x) const;  // into this thread's scratch table
+  FastInterval sum(const Compiled& c, const FastInterval* powers) const;
+
+  std::vector<Term> terms_;
+  std::vector<std::pair<int, int>> factors_;
+  std::vector<Compiled> values_, partials_;
+  std::vector<int> entry_row_, entry_col_;
+  std::vector<std::vector<int>> involved_;
+  std::vector<int> max_degree_, power_offset_;  // per variable; x_v^e at power_offset_[v] + e - 1
+  int power_count_ = 0;
+};
+
+}  // namespace linkbox::model
