@@ -219,12 +219,4 @@ Result Search::result() {
   return r;
 }
 
-Result branch_and_prune(const Box& start, prune::Sequence& contractor, std::span<const int> split_dims,
-                        const Params& params, Budget& budget, int threads, Certifier* certifier,
-                        const Bisector* bisector) {
-  Search search(start, contractor, {split_dims.begin(), split_dims.end()}, params, budget, certifier, bisector);
-  search.run(threads);
-  return search.result();
-}
-
 }  // namespace linkbox::solve

@@ -81,14 +81,11 @@ class Search {
 // against 20-40 us per box on the rigid 6R, Eco9 and planted systems).
 constexpr double kLpWork = 15;
 
-// With threads > 1, boxes are processed in parallel by clones of `contractor` (their
-// counters are added back into it). Every box is processed the same way whatever the
-// thread, and solutions are returned in the order of their place in the search tree (the
-// depth-first order), so the output does not depend on the thread count or on scheduling.
-// `certifier` (optional) is asked about every box the contractors say holds at most one root;
-// a box it certifies is a solution at once (clones serve other threads).
-Result branch_and_prune(const Box& start, prune::Sequence& contractor, std::span<const int> split_dims,
-                        const Params& params, Budget& budget, int threads = 1, Certifier* certifier = nullptr,
-                        const Bisector* bisector = nullptr);  // none: the widest split side
+// With threads > 1 a Search processes boxes in parallel with clones of `contractor` (their
+// counters are added back into it). Every box is processed the same way whatever the thread
+// (the LP backoff travels with the box), and solutions come in search-tree order, so a
+// finished search does not depend on the thread count or on scheduling. `certifier`
+// (optional) is asked about every box the contractors say holds at most one root; a box it
+// certifies is a solution at once. `bisector` (optional; none: the widest split side).
 
 }  // namespace linkbox::solve
