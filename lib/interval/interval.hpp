@@ -20,13 +20,26 @@ struct RoundedArith : bi::rounded_arith_opp<double> {
     asm volatile("" : "+x"(x));
     return x;
   }
+  // Boost's opp policy ends sqrt_down and median in upward mode whatever mode it found:
+  // right inside a RoundingGuard (upward anyway), but FastInterval outside one (the float
+  // variant) would leave the thread rounding upward for good. These put back the mode.
   double sqrt_down(const double& x) {
+    rounding_mode found;
+    this->get_rounding_mode(found);
     this->downward();
     const double r = this->force_rounding(std::sqrt(opaque(x)));
-    this->upward();
+    this->set_rounding_mode(found);
     return r;
   }
   double sqrt_up(const double& x) { return this->force_rounding(std::sqrt(opaque(x))); }
+  double median(const double& x, const double& y) {
+    rounding_mode found;
+    this->get_rounding_mode(found);
+    this->to_nearest();
+    const double r = this->force_rounding((x + y) / 2);
+    this->set_rounding_mode(found);
+    return r;
+  }
 };
 
 // checking_base: emptiness is handled explicitly, never by throwing.
