@@ -1,8 +1,14 @@
 #pragma once
-// The reference LP backend: CGAL's exact QP solver (number type Gmpzf) on the same LP,
-// read as rationals. Slow (lib/README.md: 0.05-8 s per LP on a ~60-column relaxation), so it is
-// the oracle in tests and a selectable strategy, not the default. All CGAL headers stay in
-// exact_lp.cpp.
+// The exact LP backend: every answer is the exact optimum of the LP as loaded, rounded
+// outward to a double, or an exact infeasibility proof. CLP solves in floating point
+// (warm-started, clp_core.hpp); its final basis is then checked in rational arithmetic
+// (exact_simplex.hpp): primal and dual feasibility together certify the optimum. A basis
+// that fails the check is repaired by a few exact pivots; CLP's infeasibility verdict is
+// checked as a Farkas certificate in rationals. Whatever stays undecided goes to CGAL's exact
+// QP solver from scratch (cgal_lp.hpp), so the answer never rests on floating point.
+// paths() counts which way each LP went.
+#include "prune/lp/clp_core.hpp"
+#include "prune/lp/exact_simplex.hpp"
 #include "prune/lp/lp_solver.hpp"
 
 namespace linkbox::prune::lp {
@@ -10,18 +16,27 @@ namespace linkbox::prune::lp {
 class ExactLp final : public LpSolver {
  public:
   std::string name() const override { return "exact"; }
-  void load(const LinearProgram& program) override { program_ = program; }
-  void set_column_bounds(int col, double lo, double hi) override {
-    program_.col_lo[col] = lo;
-    program_.col_hi[col] = hi;
-  }
+  void load(const LinearProgram& program) override;
+  void set_column_bounds(int col, double lo, double hi) override;
   // The exact optimum rounded down to a double (the largest double <= the optimum).
-  LpBound minimize(int col) override;
+  LpBound minimize(int col) override { return solve(col, 1.0); }
   // The exact optimum rounded up (the smallest double >= the optimum).
-  LpBound maximize(int col) override;
+  LpBound maximize(int col) override { return solve(col, -1.0); }
+
+  bool last_point(std::vector<double>& x) const override { return clp_.point(x); }
+  long iterations() const override { return clp_.iterations(); }
+  LpPaths paths() const override { return paths_; }
+
+  // Exact pivots allowed from CLP's basis before CGAL takes over.
+  static constexpr int kMaxPivots = 64;
 
  private:
-  LinearProgram program_;
+  LpBound solve(int col, double sense);
+
+  ClpCore clp_;
+  ExactSimplex exact_;
+  LpPaths paths_;
+  std::vector<BasisStatus> cols_, rows_;
 };
 
 }  // namespace linkbox::prune::lp

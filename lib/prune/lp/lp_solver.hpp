@@ -3,6 +3,7 @@
 // Every answer is rigorous for the LP exactly as loaded (double data read as rationals):
 // a minimum is never above the true LP minimum, a maximum never below the true maximum,
 // and `infeasible` is only said when proved. Float solver output alone never decides.
+#include "prune/counters.hpp"
 #include "prune/lp/linear_program.hpp"
 
 #include <memory>
@@ -24,8 +25,11 @@ struct LpBound {
   double value = 0;
 };
 
-// float: CLP's float answers trusted as they are (the unverified variant, for comparison).
-enum class LpBackend { safe, exact, float_trusted };
+// safe: CLP + Neumaier-Shcherbina bounds (safe_lp.hpp); exact: CLP's basis checked in
+// rationals, CGAL when that fails (exact_lp.hpp); cgal: CGAL's exact QP solver on every LP
+// from scratch (cgal_lp.hpp, the independent reference); float: CLP's float answers trusted
+// as they are (the unverified variant, for comparison).
+enum class LpBackend { safe, exact, float_trusted, cgal };
 
 class LpSolver {
  public:
@@ -44,6 +48,8 @@ class LpSolver {
   virtual bool last_point(std::vector<double>& /*x*/) const { return false; }
   // Simplex iterations over the solver's lifetime (0 where the backend does not say).
   virtual long iterations() const { return 0; }
+  // How the answers so far were reached (the exact backend; zero elsewhere).
+  virtual LpPaths paths() const { return {}; }
 };
 
 std::unique_ptr<LpSolver> make_lp_solver(LpBackend backend);

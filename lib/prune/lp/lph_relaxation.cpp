@@ -84,6 +84,13 @@ LinearProgram build_lph_relaxation(const model::LphSystem& system, const Box& bo
   }
   for (const model::Parabolic& p : system.parabolic) add_parabolic_rows(lp, box, p);
   for (const model::Hyperbolic& h : system.hyperbolic) add_hyperbolic_rows(lp, box, h);
+  // The system's inequalities: half-spaces in the lifted variables (a strict one by its
+  // closure, which holds wherever it does).
+  for (const model::LinearInequality& in : system.inequalities) {
+    std::vector<IntervalTerm> terms;
+    for (auto& [var, coef] : in.terms) terms.push_back({var, coef});
+    add_enclosing_row(lp, box, std::move(terms), in.rhs, RowSense::at_most);
+  }
   return lp;
 }
 

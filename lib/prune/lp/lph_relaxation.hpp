@@ -8,6 +8,7 @@
 //     (the one parallel to the secant; q above them);
 //   - each b = x*y: the four planes of the tetrahedron through the lifted corners of the
 //     x-y rectangle (McCormick).
+//   - each inequality (linear in the lifted variables): its half-space, as the equations.
 // Every row is written  sum a_j v_j in [lo, hi]  with double a_j and lo/hi computed in
 // outward-rounded interval arithmetic from the true (interval) coefficients, so rounding in
 // a_j is paid for in the bounds. One LP column per system variable, bounded by the box.

@@ -1,0 +1,72 @@
+#pragma once
+// The exact half of the exact LP backend: a bounded-variable simplex in rational arithmetic
+// (GMP) that starts from a given basis, normally CLP's optimal one. Every double of the LP is
+// read exactly. A basis whose basic solution is primal feasible and whose multipliers are dual
+// feasible, both checked exactly, is an optimality certificate: the optimum is then known
+// exactly, whatever produced the basis. When the checks fail, a few exact pivots repair the
+// basis (dual simplex while it is dual feasible, primal simplex while primal feasible); a
+// dual-simplex row with no entering candidate proves the LP infeasible exactly.
+//
+// Variables are the columns x_j and the row activities r_i = a_i . x, each with its bounds.
+// With k basic columns the basis fixes k nonbasic rows, and the basic columns solve the
+// k x k system A[nonbasic rows, basic columns] x_B = r_N - A[nonbasic rows, nonbasic cols] x_N;
+// the basic rows follow by products. k is at most the number of columns (67 on the rigid
+// 6R), far below the ~200 rows of the full basis, and the system is sparse.
+//
+// GMP stays in the .cpp (the data lives behind a pointer).
+#include "prune/lp/clp_core.hpp"
+#include "prune/lp/linear_program.hpp"
+
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace linkbox::prune::lp {
+
+class ExactSimplex {
+ public:
+  ExactSimplex();
+  ~ExactSimplex();
+  ExactSimplex(const ExactSimplex&) = delete;
+  ExactSimplex& operator=(const ExactSimplex&) = delete;
+
+  // Converts the LP's data to rationals once; later solves reuse it.
+  void load(const LinearProgram& program);
+  void set_column_bounds(int col, double lo, double hi);
+
+  struct Result {
+    enum Kind {
+      optimal,     // down/up: the exact optimum of sense * x[col] rounded down and up
+      infeasible,  // proved by an exact dual-simplex row
+      failed,      // no certificate within the pivot budget (or a singular basis)
+    } kind = failed;
+    double down = 0, up = 0;
+    int pivots = 0;  // exact pivots taken
+    // The starting basis as found: basic columns, nonbasic variables moved to their other
+    // bound for dual feasibility, violated bounds after that, wrong-signed reduced costs left.
+    int size = 0, flips = 0, primal_violations = 0, dual_violations = 0;
+    // Why it failed: 0 none, 1 not a vertex (free nonbasic or wrong basis size), 2 singular
+    // basis, 3 primal and dual infeasible at once, 4 pivot budget spent, 5 unbounded ray.
+    int failure = 0;
+  };
+  // min sense * x[col] from the basis (cols, rows) (ClpCore::basis), with at most
+  // `max_pivots` exact pivots.
+  Result solve(int col, double sense, std::vector<BasisStatus> cols, std::vector<BasisStatus> rows,
+               int max_pivots);
+
+  // True when y is a Farkas certificate in exact arithmetic: with y_i >= 0 read against
+  // row_lo and y_i < 0 against row_hi, the largest value of (y^T A) x over the column box is
+  // below sum y_i b_i. Non-finite y_i, or ones whose needed row bound is infinite, count 0.
+  bool proves_infeasible(std::span<const double> y) const;
+
+ private:
+  struct Data;
+  std::unique_ptr<Data> d_;
+};
+
+// Test hook for the fraction-free LU inside: solves M x = b (or M^T x = b) for the k x k
+// integer matrix M (row-major), returning x rounded to doubles; empty when M is singular.
+std::vector<double> integer_lu_solve(int k, const std::vector<long>& matrix, const std::vector<long>& b,
+                                     bool transpose);
+
+}  // namespace linkbox::prune::lp
