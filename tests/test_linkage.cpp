@@ -6,6 +6,7 @@
 #include "formulate/linkage.hpp"
 #include "formulate/to_lph.hpp"
 #include "interval/rigorous.hpp"
+#include "input/case_file.hpp"
 #include "input/linkage_file.hpp"
 #include "report/json.hpp"
 #include "input/toml_reader.hpp"
@@ -257,9 +258,8 @@ std::vector<Line> random_lines(std::mt19937& rng, int n, double meet_probability
 input::LinkageCase load_file(const std::string& path) {
   std::ifstream in(path);
   REQUIRE(in);
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  const toml::table root = toml::parse(text, path);
-  return input::read_linkage(root, path, text);
+  // Through the case reader, which also takes the [solve] table off.
+  return std::get<input::LinkageCase>(input::read_case(path).description);
 }
 
 std::string case_path(const std::string& name) { return std::string(LINKBOX_SOURCE_DIR) + "/cases/linkages/" + name; }

@@ -17,6 +17,7 @@ const char* to_string(ClusterStatus s) {
     case ClusterStatus::unverified: return "unverified";
     case ClusterStatus::curve: return "curve";
     case ClusterStatus::empty: return "empty";
+    case ClusterStatus::infeasible: return "infeasible";
   }
   return "?";
 }
@@ -114,6 +115,11 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     }
     c.hull = member[0];
     for (auto& b : member) c.hull = hull(c.hull, b);
+    if (options.skip_rest && options.skip_rest()) {
+      c.reason = "verification skipped (interrupted)";
+      report.clusters.push_back(std::move(c));
+      continue;
+    }
     c.chart = f.chart_for(c.hull);
     Box start;
     try {
@@ -123,9 +129,11 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     }
     if (!start.empty()) certify_isolated(f, f.natural(c.chart), start, member, periodic, c, options.newton);
     classify_curve(f, member, !start.empty(), c, options.newton);
+    if (!start.empty()) classify_inequalities(f.natural(c.chart), start, c);
     report.clusters.push_back(std::move(c));
   }
   const int overlaps_unresolved = merge_duplicates(f, report, periodic, options.newton);
+  report.inequalities = static_cast<int>(f.natural(0).inequalities.size());
   summarise(report, overlaps_unresolved, result);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;

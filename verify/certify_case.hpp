@@ -7,6 +7,7 @@
 #include "solve/result.hpp"
 #include "verify/cluster_report.hpp"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,9 @@ namespace linkbox::verify {
 
 struct VerifyOptions {
   newton::NewtonOptions newton;
+  // Asked before each cluster: when it says so (a second interrupt), the clusters left are
+  // reported unverified ("verification skipped") and the run ends at once.
+  std::function<bool()> skip_rest;
 };
 
 VerifyReport verify_case(const formulate::Formulation& formulation, const solve::CaseResult& result,

@@ -8,8 +8,11 @@
 
 namespace linkbox::verify {
 
-// empty: proved to hold no root (a spurious cluster of the search).
-enum class ClusterStatus { certified, unverified, curve, empty };
+// empty: proved to hold no root (a spurious cluster of the search). infeasible: proved to
+// hold no root where the inequalities hold (its only root violates one, or one fails on all
+// of it). A certified root is certified only when it provably satisfies every inequality; one
+// that sits on an inequality's boundary (the enclosure cannot tell) is unverified.
+enum class ClusterStatus { certified, unverified, curve, empty, infeasible };
 const char* to_string(ClusterStatus s);
 
 struct CurveCrossing {
@@ -39,6 +42,11 @@ struct ClusterReport {
   std::vector<CurveCrossing> crossings;         // curve clusters
   int crossings_certified = 0;
   int duplicate_of = -1;  // certified, but the same root as that cluster's
+  // Inequalities of the natural system: the one a root violates (infeasible) or sits on the
+  // boundary of (unverified), -1 if none; and those whose sign the enclosure of the cluster
+  // (its certified root when certified, else its hull) leaves undecided.
+  int inequality = -1;
+  std::vector<int> straddled;
   // Upper bounds: the largest rigorous residual max_i |f_i(midpoint)| of a member box in its
   // sub-problem's system; for a certified cluster, per member (same order as `boxes`) the
   // farthest distance (max norm, output variables, angles modulo 2 pi) from a point of the
@@ -54,6 +62,8 @@ struct VerifyReport {
   int unverified = 0;
   int curves = 0;
   int empty = 0;
+  int infeasible = 0;
+  int inequalities = 0;  // of the natural system: the count is of roots where they all hold
   bool exact = false;  // "exactly N roots in the domain" holds
   std::string headline;
   double seconds = 0;

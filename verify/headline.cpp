@@ -26,6 +26,8 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
       report.curves++;
     } else if (c.status == ClusterStatus::empty) {
       report.empty++;
+    } else if (c.status == ClusterStatus::infeasible) {
+      report.infeasible++;
     } else if (c.status == ClusterStatus::unverified) {
       report.unverified++;
       reasons[without_detail(c.reason)]++;
@@ -34,22 +36,31 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
   report.exact = result.complete && result.rigorous && report.unverified == 0 && report.curves == 0 && all_unique &&
                  overlaps_unresolved == 0;
   const int n = report.certified_roots;
+  const std::string where =
+      report.inequalities == 0 ? "in the domain"
+                               : std::string("in the domain where the ") +
+                                     (report.inequalities == 1 ? "inequality holds" : "inequalities hold");
+  const std::string excluded =
+      report.infeasible ? ", " + std::to_string(report.infeasible) + " proved to violate an inequality" : "";
   if (report.exact) {
-    report.headline = "exactly " + std::to_string(n) + " root" + (n == 1 ? "" : "s") +
-                      " in the domain, each in its certified box";
+    report.headline = "exactly " + std::to_string(n) + " root" + (n == 1 ? "" : "s") + " " + where +
+                      ", each in its certified box" + (report.infeasible ? " (" + excluded.substr(2) + ")" : "");
     return;
   }
   report.headline = std::to_string(n) + " certified";
   if (report.curves) report.headline += ", " + std::to_string(report.curves) + " curve cluster(s)";
   if (report.unverified) report.headline += ", " + std::to_string(report.unverified) + " unresolved";
   if (report.empty) report.headline += ", " + std::to_string(report.empty) + " proved empty";
+  report.headline += excluded;
   if (overlaps_unresolved) report.headline += ", " + std::to_string(overlaps_unresolved) + " overlapping roots unresolved";
   if (!result.complete) report.headline += "; search incomplete (" + result.stop_reason + ")";
   if (!result.rigorous)
     report.headline = "UNVERIFIED search (--arith float: boxes were discarded on float evidence, roots may be missing): " +
                       report.headline;
   std::string why;
-  for (auto& [r, k] : reasons) why += (why.empty() ? "" : "; ") + r + " x" + std::to_string(k);
+  // "inflation failed: 1 cluster", never "inflation failed x1", which reads as a variable.
+  for (auto& [r, k] : reasons)
+    why += (why.empty() ? "" : "; ") + r + ": " + std::to_string(k) + (k == 1 ? " cluster" : " clusters");
   if (!why.empty()) report.headline += " (" + why + ")";
 }
 

@@ -129,4 +129,47 @@ void certify_isolated(const formulate::Formulation& f, const formulate::NaturalS
   }
 }
 
+void classify_inequalities(const formulate::NaturalSystem& sys, const Box& start, ClusterReport& c) {
+  const auto& ineqs = sys.inequalities;
+  if (ineqs.empty() || c.status == ClusterStatus::empty || c.status == ClusterStatus::infeasible) return;
+  const bool certified = c.status == ClusterStatus::certified;
+  // Where the cluster's roots are: the certified box (exactly one root), else the hull.
+  const Box& where = certified ? c.certificate.box : start;
+  int outside = -1;
+  for (size_t k = 0; k < ineqs.size(); ++k) {
+    const model::Side side = model::side_of(ineqs[k], where);
+    if (side == model::Side::boundary) c.straddled.push_back(static_cast<int>(k));
+    if (side == model::Side::outside && outside < 0) outside = static_cast<int>(k);
+  }
+  const auto quoted = [&](int k) { return "\"" + ineqs[k].name + "\""; };
+  if (outside >= 0) {
+    c.inequality = outside;
+    if (!certified) {
+      if (c.status == ClusterStatus::curve) return;  // crossings stay; the curve is where the inequality fails
+      c.status = ClusterStatus::infeasible;
+      c.certificate = {};
+      c.certificate.box = start;
+      c.reason = "proved to hold no root where the inequalities hold: " + quoted(outside) + " fails on all of it";
+    } else if (c.certificate.unique_in_hull) {
+      c.status = ClusterStatus::infeasible;
+      c.reason = "its only root violates " + quoted(outside);
+    } else {
+      c.status = ClusterStatus::unverified;
+      c.reason = "its certified root violates " + quoted(outside) + "; the cluster hull is not proved free of other roots";
+    }
+    return;
+  }
+  if (c.straddled.empty()) return;
+  if (certified) {
+    c.inequality = c.straddled[0];
+    c.status = ClusterStatus::unverified;
+    c.reason = "root certified on an inequality's boundary (" + quoted(c.straddled[0]) +
+               " is undecided on its certified box)";
+  } else if (c.status == ClusterStatus::unverified) {
+    std::string list;
+    for (int k : c.straddled) list += (list.empty() ? "" : ", ") + quoted(k);
+    c.reason += (c.reason.empty() ? "" : "; ") + std::string("straddles ") + list;
+  }
+}
+
 }  // namespace linkbox::verify

@@ -13,4 +13,12 @@ void certify_isolated(const formulate::Formulation& f, const formulate::NaturalS
                       const std::vector<Box>& members, const std::vector<bool>& periodic, ClusterReport& c,
                       const newton::NewtonOptions& options);
 
+// After certification, against the natural system's inequalities (`start`: the cluster's
+// hull in the natural unknowns). A certified root stays certified only when every
+// inequality provably holds on its certified box; one violated there makes the cluster
+// infeasible (its hull holds no other root) or unverified (it might), one undecided makes it
+// unverified "on the boundary". A cluster not certified on which an inequality fails
+// throughout is infeasible; the inequalities it straddles are listed.
+void classify_inequalities(const formulate::NaturalSystem& sys, const Box& start, ClusterReport& c);
+
 }  // namespace linkbox::verify

@@ -1,9 +1,12 @@
 // The `linkbox` executable: arguments -> options -> load -> solve -> verify -> report.
 // Exit codes: 0 success, 1 internal failure or a failed check, 2 bad input (case file or
-// arguments).
+// arguments), 128 + the signal (130 SIGINT, 143 SIGTERM) when interrupted: what was found is
+// still written.
 #include "formulate/load.hpp"
+#include "input/to_toml.hpp"
 #include "report/json.hpp"
 #include "report/text.hpp"
+#include "solve/checkpoint.hpp"
 #include "solve/solve_case.hpp"
 #include "verify/certify_case.hpp"
 #include "verify/check.hpp"
@@ -11,48 +14,192 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <atomic>
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <unistd.h>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <unistd.h>
 
 using namespace linkbox;
 
 namespace {
 
+// ---- interrupts: the first stops the search at the next box, the second skips verification.
+
+std::atomic<int> interrupts{0};
+volatile std::sig_atomic_t last_signal = 0;
+
+void on_signal(int sig) {
+  last_signal = sig;
+  static const char first[] =
+      "\nlinkbox: interrupted: the search stops at the next box; what was found is verified and written "
+      "(interrupt again to skip verification)\n";
+  static const char second[] = "\nlinkbox: interrupted again: verification skipped\n";
+  const bool again = interrupts.fetch_add(1) > 0;
+  // write(2) is async-signal-safe; stdio is not.
+  [[maybe_unused]] auto n = again ? write(2, second, sizeof second - 1) : write(2, first, sizeof first - 1);
+}
+
+void catch_interrupts() {
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+// ---- commands
+
 struct SolveCommand {
-  std::string case_file, json_out, prune;
+  std::string case_file, json_out, prune, checkpoint;
   solve::RunOptions options;
   bool quiet = false, no_verify = false;
+  std::string resume;  // resume: the checkpoint to go on from
+  CLI::App* app = nullptr;
+  bool given(const char* flag) const { return app->count(flag) > 0; }
 };
 
 struct CheckCommand {
   std::string result_file, case_file;
 };
 
-void write_json(const std::string& path, const nlohmann::json& j) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
-  out << j.dump(1) << '\n';
+// Output problems are bad input, found before the work rather than after it.
+void check_writable(const std::string& path, const std::string& flag) {
+  if (path.empty()) return;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw std::invalid_argument(flag + " " + path + ": is a folder");
+  const bool existed = std::filesystem::exists(path, ec);
+  if (!std::ofstream(path, std::ios::app))
+    throw std::invalid_argument(flag + " " + path + ": cannot write there (" + std::strerror(errno) + ")");
+  if (!existed) std::filesystem::remove(path, ec);
+}
+
+// FNV-1a of the case file's bytes: a checkpoint is for this exact text.
+std::string file_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::uint64_t h = 1469598103934665603ull;
+  for (char c; in.get(c);) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  char out[17];
+  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+  return out;
+}
+
+// The settings that decide the boxes, as a checkpoint records them.
+nlohmann::json search_settings(const solve::RunOptions& o) {
+  return {{"sigma", o.params.sigma},
+          {"rho", o.params.rho},
+          {"order", o.params.order == solve::Order::depth_first ? "dfs" : "bfs"},
+          {"prune", solve::strategy_name(o.strategy.contractors)},
+          {"bisect", solve::to_string(o.bisect)},
+          {"lp", prune::lp::to_string(o.strategy.lp)},
+          {"arith", to_string(o.strategy.arith)}};
+}
+
+// Flags, then the case's [solve] table, then the defaults.
+void resolve_settings(SolveCommand& cmd, const input::SolveSettings& s, const std::string& file) {
+  solve::RunOptions& o = cmd.options;
+  auto from_case = [&](const char* flag, const char* name, const auto& value, auto apply) {
+    if (cmd.given(flag)) {
+      o.setting_source[name] = "flag";
+    } else if (value) {
+      try {
+        apply(*value);
+      } catch (const std::invalid_argument& e) {
+        throw input::InputError(file, s.line, std::string("[solve] ") + name + ": " + e.what());
+      }
+      o.setting_source[name] = "case file";
+    }
+  };
+  from_case("--sigma", "sigma", s.sigma, [&](double x) { o.params.sigma = x; });
+  from_case("--rho", "rho", s.rho, [&](double x) { o.params.rho = x; });
+  from_case("--time-limit", "time_limit", s.time_limit, [&](double x) { o.params.time_limit = x; });
+  o.strategy.contractors = solve::parse_strategy_list(cmd.prune);
+  from_case("--prune", "prune", s.prune, [&](const std::string& x) { o.strategy.contractors = solve::parse_strategy_list(x); });
+  from_case("--bisect", "bisect", s.bisect, [&](const std::string& x) { o.bisect = solve::parse_bisect(x); });
+}
+
+// A resumed run takes the checkpoint's settings; a flag that says otherwise is refused.
+void resume_settings(SolveCommand& cmd, const nlohmann::json& saved) {
+  solve::RunOptions& o = cmd.options;
+  o.strategy.contractors = solve::parse_strategy_list(cmd.prune);
+  const nlohmann::json asked = search_settings(o);
+  auto take = [&](const char* flag, const char* name, auto apply) {
+    if (cmd.given(flag) && asked.at(name) != saved.at(name))
+      throw std::invalid_argument("the checkpoint was made with " + std::string(name) + " " + saved.at(name).dump() +
+                                  ", not " + asked.at(name).dump() + ": resume it with the same settings, or start afresh");
+    apply(saved.at(name));
+  };
+  take("--sigma", "sigma", [&](const nlohmann::json& v) { o.params.sigma = v; });
+  take("--rho", "rho", [&](const nlohmann::json& v) { o.params.rho = v; });
+  take("--order", "order", [&](const nlohmann::json& v) {
+    o.params.order = v == "bfs" ? solve::Order::breadth_first : solve::Order::depth_first;
+  });
+  take("--prune", "prune", [&](const nlohmann::json& v) { o.strategy.contractors = solve::parse_strategy_list(v); });
+  take("--bisect", "bisect", [&](const nlohmann::json& v) { o.bisect = solve::parse_bisect(v); });
+  take("--lp", "lp", [&](const nlohmann::json& v) {
+    o.strategy.lp = v == "exact" ? prune::lp::LpBackend::exact : prune::lp::LpBackend::safe;
+  });
+  take("--arith", "arith", [&](const nlohmann::json& v) {
+    o.strategy.arith = v == "verified" ? Arith::verified : Arith::float_unverified;
+  });
+  for (auto& [name, value] : saved.items()) o.setting_source[name] = "checkpoint";
+  if (search_settings(o) != saved)
+    throw std::invalid_argument("the checkpoint's settings " + saved.dump() + " are not understood by this linkbox");
 }
 
 int run_solve(SolveCommand& cmd) {
   solve::RunOptions& o = cmd.options;
-  o.strategy.contractors = solve::parse_strategy_list(cmd.prune);
   o.progress = !cmd.quiet;
+  o.params.interrupt = &interrupts;
+  check_writable(cmd.json_out, "--json");
+  check_writable(cmd.checkpoint, "--checkpoint");
 
+  std::optional<solve::Checkpoint> saved;
+  nlohmann::json header;
+  if (!cmd.resume.empty()) {
+    saved = solve::read_checkpoint(cmd.resume);
+    header = nlohmann::json::parse(saved->header);
+    if (cmd.case_file.empty()) cmd.case_file = header.value("case_file", "");
+  }
   const formulate::LoadedCase c = formulate::load_case(cmd.case_file);
+  const std::string hash = file_hash(cmd.case_file);
+  if (saved) {
+    if (header.value("case_hash", "") != hash)
+      throw std::invalid_argument("checkpoint " + cmd.resume + " was made for another case (" +
+                                  header.value("case_file", "?") + ", " + header.value("case_name", "?") +
+                                  ") or that file has changed since: " + cmd.case_file + " does not match it");
+    resume_settings(cmd, header.at("settings"));
+    if (!cmd.given("--time-limit") && c.solve.time_limit) o.params.time_limit = *c.solve.time_limit;
+    o.resume = &*saved;
+  } else {
+    resolve_settings(cmd, c.solve, c.file);
+  }
+  if (!cmd.checkpoint.empty()) {
+    o.checkpoint = cmd.checkpoint;
+    o.checkpoint_header =
+        nlohmann::json{{"case_file", c.file}, {"case_name", c.name}, {"case_hash", hash}, {"settings", search_settings(o)}}
+            .dump();
+  }
+  if (interrupts.load()) return 128 + last_signal;  // before any work: nothing to keep
+
   const solve::CaseResult r = solve::solve_case(*c.formulation, o);
   report::print_summary(stdout, c, o, r);
   nlohmann::json j = report::result_json(c.name, c.file, *c.formulation, o, r);
-  if (!cmd.no_verify) {
-    const verify::VerifyReport v = verify::verify_case(*c.formulation, r);
+  if (!cmd.no_verify && interrupts.load() < 2) {
+    verify::VerifyOptions vo;
+    vo.skip_rest = [] { return interrupts.load() >= 2; };
+    const verify::VerifyReport v = verify::verify_case(*c.formulation, r, vo);
     report::print_verification(stdout, c, v);
     report::add_verification(j, *c.formulation, v);
   }
-  if (!cmd.json_out.empty()) write_json(cmd.json_out, j);
-  return 0;
+  if (!cmd.json_out.empty()) solve::write_atomically(cmd.json_out, j.dump(1) + '\n');
+  std::fflush(stdout);
+  return interrupts.load() ? 128 + last_signal : 0;
 }
 
 int run_check(const CheckCommand& cmd) {
@@ -84,12 +231,27 @@ int run_check(const CheckCommand& cmd) {
   return 0;
 }
 
-void add_solve_options(CLI::App& cmd, SolveCommand& s) {
+// ---- options
+
+// CLI11's own range messages print the whole of DBL_MAX; these say what is expected.
+CLI::Validator number(double lo, bool lo_open, double hi = INFINITY) {
+  std::string want = std::string("a number ") + (lo_open ? "> " : ">= ") + CLI::detail::to_string(lo);
+  if (hi < INFINITY) want += " and <= " + CLI::detail::to_string(hi);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        const bool ok = end != text.c_str() && *end == '\0' && (lo_open ? x > lo : x >= lo) && x <= hi;
+        return ok ? "" : "expected " + want + ", got '" + text + "'";
+      },
+      want.substr(2), "");
+}
+
+void add_search_options(CLI::App& cmd, SolveCommand& s) {
   solve::RunOptions& o = s.options;
-  cmd.add_option("case", s.case_file, "case file (TOML)")->required();
-  cmd.add_option("--sigma", o.params.sigma, "solution box size")->check(CLI::PositiveNumber);
-  cmd.add_option("--rho", o.params.rho, "split when volume ratio after a shrink exceeds rho")
-      ->check(CLI::Range(0.0, 1.0));
+  cmd.add_option("--sigma", o.params.sigma, "solution box size (default 1e-4, or the case's [solve] table)")
+      ->check(number(0, true));
+  cmd.add_option("--rho", o.params.rho, "split when volume ratio after a shrink exceeds rho")->check(number(0, true, 1));
   cmd.add_option("--order", o.params.order, "dfs or bfs")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, solve::Order>{{"dfs", solve::Order::depth_first}, {"bfs", solve::Order::breadth_first}}));
@@ -108,10 +270,18 @@ void add_solve_options(CLI::App& cmd, SolveCommand& s) {
   cmd.add_option("--arith", o.strategy.arith, "verified (default) or float: the UNVERIFIED float variant, for comparison")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, Arith>{{"verified", Arith::verified}, {"float", Arith::float_unverified}}));
-  cmd.add_option("--time-limit", o.params.time_limit, "seconds (0 = none)")->check(CLI::NonNegativeNumber);
-  cmd.add_option("--max-boxes", o.params.max_boxes, "processed boxes (0 = none)")->check(CLI::NonNegativeNumber);
+}
+
+void add_run_options(CLI::App& cmd, SolveCommand& s) {
+  solve::RunOptions& o = s.options;
+  cmd.add_option("--time-limit", o.params.time_limit, "seconds (0 = none); the search stops and keeps what it proved")
+      ->check(number(0, false));
+  cmd.add_option("--max-boxes", o.params.max_boxes, "processed boxes (0 = none)")->check(number(0, false));
   cmd.add_option("--threads", o.threads, "threads across sub-problems")->check(CLI::Range(1, 256));
   cmd.add_option("--json", s.json_out, "write the result as JSON");
+  cmd.add_option("--checkpoint", s.checkpoint, "save the run's state to this file, to go on with `linkbox resume`");
+  cmd.add_option("--checkpoint-every", o.checkpoint_every, "seconds between checkpoints (default 60)")
+      ->check(number(0, true));
   cmd.add_flag("--quiet", s.quiet, "no progress on stderr");
   cmd.add_flag("--no-verify", s.no_verify, "skip clustering and certification");
 }
@@ -130,14 +300,29 @@ void single_threaded_blas(char** argv) {
 int main(int argc, char** argv) {
   single_threaded_blas(argv);
   CLI::App app{"linkbox: verified position analysis of linkages by interval branch-and-prune"};
+  app.set_version_flag("--version", "linkbox " LINKBOX_VERSION);
   app.require_subcommand(1);
   SolveCommand solve_cmd;
   auto* solve_app = app.add_subcommand("solve", "enclose every root of a case in solution boxes");
-  add_solve_options(*solve_app, solve_cmd);
+  solve_app->add_option("case", solve_cmd.case_file, "case file (TOML; or a peer's .bch or .cuik)")->required();
+  add_search_options(*solve_app, solve_cmd);
+  add_run_options(*solve_app, solve_cmd);
+  solve_cmd.app = solve_app;
+  SolveCommand resume_cmd;
+  auto* resume_app = app.add_subcommand(
+      "resume", "go on with a run saved by --checkpoint; it ends with the boxes an unbroken run gives");
+  resume_app->add_option("checkpoint", resume_cmd.resume, "the checkpoint file")->required();
+  resume_app->add_option("--case", resume_cmd.case_file, "case file (default: the one named in the checkpoint)");
+  add_search_options(*resume_app, resume_cmd);
+  add_run_options(*resume_app, resume_cmd);
+  resume_cmd.app = resume_app;
   CheckCommand check_cmd;
   auto* check_app = app.add_subcommand("check", "re-check every certificate of a result JSON (no search)");
   check_app->add_option("result", check_cmd.result_file, "JSON written by solve --json")->required();
   check_app->add_option("--case", check_cmd.case_file, "case file (default: the one named in the JSON)");
+  std::string convert_file;
+  auto* convert_app = app.add_subcommand("convert", "write a peer's model (Minibex .bch, CuikSuite .cuik) as a TOML case");
+  convert_app->add_option("model", convert_file, "the .bch or .cuik file")->required();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -145,8 +330,14 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
   try {
+    if (*solve_app || *resume_app) catch_interrupts();
     if (*solve_app) return run_solve(solve_cmd);
+    if (*resume_app) return run_solve(resume_cmd);
     if (*check_app) return run_check(check_cmd);
+    if (*convert_app) {
+      std::fputs(input::convert_to_toml(convert_file).c_str(), stdout);
+      return 0;
+    }
   } catch (const input::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

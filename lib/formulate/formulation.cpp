@@ -1,5 +1,7 @@
 #include "formulate/formulation.hpp"
 
+#include "model/lifting.hpp"
+
 namespace linkbox::formulate {
 
 SubProblem PolynomialFormulation::subproblem(size_t) const {
@@ -21,7 +23,39 @@ const NaturalSystem& Formulation::natural(std::uint64_t chart) const {
 }
 
 NaturalSystem PolynomialFormulation::natural_system(std::uint64_t) const {
-  return {system_.equations, system_.names(), system_.domain(), {}, nullptr};
+  return {system_.equations, system_.names(), system_.domain(), system_.inequalities, {}, nullptr};
+}
+
+std::vector<std::string> PolynomialFormulation::output_names() const {
+  if (!system_.lifting) return system_.names();
+  std::vector<std::string> names;
+  for (auto& v : system_.lifting->declared) names.push_back(v.name);
+  return names;
+}
+
+Box PolynomialFormulation::to_output(size_t, const Box& box) const {
+  return system_.lifting ? system_.lifting->to_declared(box) : box;
+}
+
+Box PolynomialFormulation::output_to_natural(std::uint64_t, const Box& output) const {
+  return system_.lifting ? system_.lifting->to_lifted(output) : output;
+}
+
+std::vector<std::string> PolynomialFormulation::model_notes() const {
+  std::vector<std::string> notes;
+  if (system_.lifting) {
+    const size_t declared = system_.lifting->declared.size(), unknowns = system_.variables.size();
+    notes.push_back("lifted: " + std::to_string(declared) + " declared variables -> " + std::to_string(unknowns) +
+                    " unknowns, " + std::to_string(system_.equations.size()) + " equations");
+    for (auto& n : system_.lifting->notes) notes.push_back("  " + n);
+  }
+  if (!system_.inequalities.empty()) {
+    std::string list;
+    for (auto& c : system_.inequalities) list += (list.empty() ? "" : "; ") + c.name;
+    notes.push_back(std::to_string(system_.inequalities.size()) + " inequalit" +
+                    (system_.inequalities.size() == 1 ? "y" : "ies") + ": " + list);
+  }
+  return notes;
 }
 
 }  // namespace linkbox::formulate

@@ -48,6 +48,9 @@ struct NaturalSystem {
   std::vector<model::Polynomial> equations;
   std::vector<std::string> unknowns;
   Box domain;  // where roots count; empty = unbounded (angles: every chart covers the circle)
+  // Over `unknowns`: a certified root counts only where every one provably holds (verify
+  // classifies it, see verify/isolated.hpp); Newton ignores them.
+  std::vector<model::Inequality> inequalities;
   std::string missing;  // no equations: why the formulation has none (empty: not given)
   // When square: the equations compiled for interval Newton, over `unknowns`.
   std::shared_ptr<const model::CompiledSystem> compiled;
@@ -65,6 +68,9 @@ class Formulation {
   virtual Box to_output(size_t index, const Box& box) const = 0;
   // Declared outputs (e.g. rotation matrices), rigorous over the box.
   virtual std::vector<MatrixOutput> declared_outputs(size_t, const Box&) const { return {}; }
+  // What the model adds to the case as written, one line each (e.g. functions of variables
+  // lifted to new unknowns, inequalities), for the model-size print. Empty: nothing.
+  virtual std::vector<std::string> model_notes() const { return {}; }
   // True when output variables are angles (compared modulo 2*pi).
   virtual bool outputs_are_angles() const { return false; }
 
@@ -88,18 +94,22 @@ class Formulation {
   mutable std::map<std::uint64_t, std::unique_ptr<const NaturalSystem>> natural_;
 };
 
-// A polynomial system as typed by a user: one sub-problem, outputs are its variables.
+// A polynomial system as typed by a user: one sub-problem, outputs are its variables. When
+// functions of variables were lifted (system.lifting), the search and certification work on
+// the lifted unknowns and outputs are the variables the user declared, mapped back one to
+// one (model/lifting.hpp).
 class PolynomialFormulation final : public Formulation {
  public:
   explicit PolynomialFormulation(model::System system) : system_(std::move(system)) {}
   std::string kind() const override { return "polynomial"; }
   size_t subproblem_count() const override { return 1; }
   SubProblem subproblem(size_t) const override;
-  std::vector<std::string> output_names() const override { return system_.names(); }
-  Box to_output(size_t, const Box& box) const override { return box; }
+  std::vector<std::string> output_names() const override;
+  Box to_output(size_t, const Box& box) const override;
+  std::vector<std::string> model_notes() const override;
   NaturalSystem natural_system(std::uint64_t) const override;
-  Box output_to_natural(std::uint64_t, const Box& output) const override { return output; }
-  Box natural_to_output(std::uint64_t, const Box& natural) const override { return natural; }
+  Box output_to_natural(std::uint64_t, const Box& output) const override;
+  Box natural_to_output(std::uint64_t, const Box& natural) const override { return to_output(0, natural); }
 
  private:
   model::System system_;

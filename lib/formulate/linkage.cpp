@@ -6,6 +6,7 @@
 #include "interval/rigorous.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <iomanip>
 #include <map>
 #include <numeric>
@@ -325,12 +326,64 @@ void LinkageFormulation::build_model() {
     for (auto& c : vectors_[v]) place(c);
   for (auto& c : offsets_) place(c);
 
+  // Joint limits: cos(h) |a_in| |a_out| - (a_in . a_out) cos(m) - ((a_in x a_out) . d) sin(m)
+  // <= 0, where |a| is 1 for a modelled normal and |sin(alpha)| for one left out (its
+  // vector is d_in x d_out there).
+  for (const input::JointLimit& jl : case_.joint_limits) {
+    const Interval lo(jl.lower.lower()), hi(jl.upper.upper()), pi = rigorous::pi();
+    char bounds[64];
+    std::snprintf(bounds, sizeof bounds, "[%.6g, %.6g]", median(jl.lower), median(jl.upper));
+    Limit l{-1, (lo + hi) / Interval(2.0), (hi - lo) / Interval(2.0), jl.joint + " in " + bounds};
+    if (l.half.upper() >= pi.lower()) continue;  // a full turn: no limit
+    for (size_t k = 0; k < outputs_.size() && l.output < 0; ++k)
+      if (!outputs_[k].turn && outputs_[k].name == jl.joint) l.output = static_cast<int>(k);
+    if (l.output < 0) throw std::logic_error("linkage: no output for limited joint " + jl.joint);
+    const Output& o = outputs_[l.output];
+    const VecP d = vector_polynomial(o.joint), ain = vector_polynomial(joints + o.normal_in),
+               aout = vector_polynomial(joints + o.normal_out);
+    Interval scale(1.0);
+    for (int n : {o.normal_in, o.normal_out})
+      if (!normals_[n].modelled) scale *= boost::numeric::abs(rigorous::sin(normals_[n].alpha));
+    model::Inequality g;
+    g.g = Polynomial::constant(scale * rigorous::cos(l.half)) - dot(ain, aout) * rigorous::cos(l.mid) -
+          dot(cross(ain, aout), d) * rigorous::sin(l.mid);
+    g.name = "joint limit " + l.name;
+    primary.inequalities.push_back(std::move(g));
+    limits_.push_back(std::move(l));
+  }
+
   auto lph = std::make_shared<model::LphSystem>(to_lph(primary));
   sub_.label = "all";
   sub_.system = lph_polynomials(*lph, names);
   for (size_t v = 0; v < primary.variables.size(); ++v) sub_.split_dims.push_back(static_cast<int>(v));
   sub_.lph = std::move(lph);
   sub_.unlifted = std::make_shared<const model::System>(std::move(primary));
+}
+
+std::array<Polynomial, 3> LinkageFormulation::vector_polynomial(int vector) const {
+  const int joints = static_cast<int>(joint_names_.size());
+  if (vector >= joints && !normals_[vector - joints].modelled) {
+    const Normal& nm = normals_[vector - joints];
+    VecP a = cross(vector_polynomial(nm.joint_in), vector_polynomial(nm.joint_out));
+    if (nm.negative_sine)
+      for (auto& x : a) x = -x;
+    return a;
+  }
+  VecP r;
+  for (int k = 0; k < 3; ++k) {
+    const Coordinate& c = vectors_[vector][k];
+    r[k] = Polynomial::constant(c.value);
+    if (c.variable >= 0) r[k] += Polynomial::variable(c.variable) * c.scale;
+  }
+  return r;
+}
+
+std::vector<std::string> LinkageFormulation::model_notes() const {
+  if (case_.joint_limits.empty()) return {};
+  std::string list;
+  for (auto& l : limits_) list += (list.empty() ? "" : "; ") + l.name;
+  return {std::to_string(limits_.size()) + " joint limit" + (limits_.size() == 1 ? "" : "s") +
+          " as inequalities (pruning and verification)" + (list.empty() ? "" : ": " + list)};
 }
 
 ModelSize LinkageFormulation::model_size() const {

@@ -65,7 +65,9 @@ class LinkageFormulation final : public Formulation {
   // Loops are placed one after another, each sharing exactly one joint with those placed
   // before it; other patterns have no natural system (NaturalSystem::missing says why).
   std::uint64_t chart_for(const Box& output_hull) const override;
+  // With joint limits, one inequality per limited joint (see limit_inequality).
   NaturalSystem natural_system(std::uint64_t chart) const override;
+  std::vector<std::string> model_notes() const override;
   Box output_to_natural(std::uint64_t chart, const Box& output) const override;
   Box natural_to_output(std::uint64_t chart, const Box& natural) const override;
 
@@ -135,6 +137,17 @@ class LinkageFormulation final : public Formulation {
   model::Polynomial angle_equation(const input::AngleConstraint& ac, std::uint64_t chart) const;
   std::uint64_t angle_outputs() const;  // bit k: output k is an angle (not an offset)
   std::array<Interval, 3> vector_value(int vector, const Box& box) const;
+  std::array<model::Polynomial, 3> vector_polynomial(int vector) const;  // over the primary variables
+
+  // A joint limit as the arc |theta - mid| <= half (modulo 2 pi), i.e. cos(theta - mid) >=
+  // cos(half): linear in (cos theta, sin theta), so polynomial both in the vector model
+  // (a_in . a_out and (a_in x a_out) . d) and in a half-angle tangent (times 1 + t^2 > 0).
+  struct Limit {
+    int output;             // the joint's output (and natural unknown)
+    Interval mid, half;
+    std::string name;       // "theta1 in [-pi/2, pi/2]" as written
+  };
+  model::Inequality limit_inequality(const Limit& l, std::uint64_t chart) const;  // natural unknowns
 
   input::LinkageCase case_;
   LinkageOptions options_;
@@ -154,6 +167,7 @@ class LinkageFormulation final : public Formulation {
   std::vector<Placement> placements_;  // in placement order, the ground's loop first
   std::vector<std::vector<int>> unknown_of_entry_;  // [loop][entry] -> output index
   std::string no_natural_;  // why there is no natural system (empty: there is one)
+  std::vector<Limit> limits_;  // joint limits of less than a full turn
 };
 
 }  // namespace linkbox::formulate

@@ -236,6 +236,7 @@ NaturalSystem LinkageFormulation::natural_system(std::uint64_t chart) const {
   for (size_t l = 0; l < case_.loops.size(); ++l)
     for (auto& p : dh_loop_closure(case_.loops[l], unknown_of_entry_[l], chart)) s.equations.push_back(std::move(p));
   for (auto& ac : case_.angle_constraints) s.equations.push_back(angle_equation(ac, chart));
+  for (auto& l : limits_) s.inequalities.push_back(limit_inequality(l, chart));
   if (has_prismatic_) {
     // Offsets count within their ranges; tangents are unbounded (charts cover the circle).
     std::map<int, Interval> range;
@@ -245,6 +246,16 @@ NaturalSystem LinkageFormulation::natural_system(std::uint64_t chart) const {
     for (auto& o : outputs_) s.domain.push_back(o.is_offset(prismatic_) ? range.at(o.joint) : Interval(-1e300, 1e300));
   }
   return s;
+}
+
+// theta = 2 atan(t) + s pi: cos theta = sigma (1 - t^2) / (1 + t^2), sin theta = sigma 2t /
+// (1 + t^2), sigma = (-1)^s; multiplied by 1 + t^2 > 0.
+model::Inequality LinkageFormulation::limit_inequality(const Limit& l, std::uint64_t chart) const {
+  const Polynomial t = Polynomial::variable(l.output), one = Polynomial::constant(Interval(1.0)), t2 = t * t;
+  const bool shifted = l.output < 64 && (chart >> l.output & 1);
+  Polynomial arc = (one - t2) * rigorous::cos(l.mid) + t * (Interval(2.0) * rigorous::sin(l.mid));
+  if (shifted) arc = -arc;
+  return {(one + t2) * rigorous::cos(l.half) - arc, false, "joint limit " + l.name};
 }
 
 Box LinkageFormulation::output_to_natural(std::uint64_t chart, const Box& output) const {

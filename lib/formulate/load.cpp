@@ -23,7 +23,7 @@ template <class Read>
 LoadedCase load(const std::string& file, Read&& read) {
   try {
     const input::Case c = read();
-    return {c.kind, c.name, c.file, formulate(c)};
+    return {c.kind, c.name, c.file, formulate(c), c.solve};
   } catch (const input::InputError&) {
     throw;
   } catch (const std::exception& e) {  // a bug, not the user's fault, but still no crash

@@ -12,6 +12,7 @@ namespace linkbox::formulate {
 struct LoadedCase {
   std::string kind, name, file;
   std::unique_ptr<Formulation> formulation;
+  input::SolveSettings solve;  // the case's recommended settings
 };
 
 // Throws input::InputError for anything wrong with the case, including a linkage that cannot

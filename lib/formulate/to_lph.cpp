@@ -73,10 +73,11 @@ class Lifter {
 
 model::LphSystem to_lph(const model::System& system, std::vector<model::Polynomial>* lph_equations) {
   Lifter lifter(system);
-  for (const auto& p : system.equations) {
+  // p as sum coef * v + constant, each monomial replaced by its variable.
+  auto linearise = [&](const model::Polynomial& p, std::vector<std::pair<int, Interval>>& terms, Interval& constant) {
     // Distinct monomials get distinct variables; the map only sorts the terms by index.
     std::map<int, Interval> coef;
-    Interval constant(0.0);
+    constant = Interval(0.0);
     for (auto& [powers, c] : p.terms()) {
       if (powers.empty()) {
         constant += c;
@@ -86,10 +87,22 @@ model::LphSystem to_lph(const model::System& system, std::vector<model::Polynomi
       auto [it, fresh] = coef.emplace(v, c);
       if (!fresh) it->second += c;
     }
+    for (auto& [v, c] : coef) terms.emplace_back(v, c);
+  };
+  for (const auto& p : system.equations) {
     model::LinearEquation eq;
-    for (auto& [v, c] : coef) eq.terms.emplace_back(v, c);
+    Interval constant;
+    linearise(p, eq.terms, constant);
     eq.rhs = -constant;
     lifter.system().linear.push_back(std::move(eq));
+  }
+  for (const auto& c : system.inequalities) {
+    model::LinearInequality in;
+    Interval constant;
+    linearise(c.g, in.terms, constant);
+    in.rhs = -constant;
+    in.name = c.name;
+    lifter.system().inequalities.push_back(std::move(in));
   }
   model::LphSystem lph = lifter.take();
   if (lph_equations) *lph_equations = lph_polynomials(lph).equations;
@@ -115,6 +128,11 @@ model::System lph_polynomials(const model::LphSystem& lph, const std::vector<std
     s.equations.push_back(Polynomial::variable(e.b) - Polynomial::variable(e.x) * Polynomial::variable(e.y));
     s.equation_names.push_back(lph.variables[e.b].name + " = " + lph.variables[e.x].name + " * " +
                                lph.variables[e.y].name);
+  }
+  for (auto& in : lph.inequalities) {
+    Polynomial g = Polynomial::constant(-in.rhs);
+    for (auto& [v, c] : in.terms) g += Polynomial::variable(v) * c;
+    s.inequalities.push_back({std::move(g), false, in.name});
   }
   return s;
 }

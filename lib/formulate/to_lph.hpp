@@ -17,11 +17,13 @@ namespace linkbox::formulate {
 // monomial evaluated over the original domains. linear[k] is equations[k] with every
 // monomial replaced by its variable (one linear equation per input equation, constant ones
 // included). When `lph_equations` is given it receives the same system as polynomials over
-// all variables: the linear equations, then q - x^2, then b - x*y.
+// all variables: the linear equations, then q - x^2, then b - x*y. Each inequality g <= 0
+// becomes a linear inequality the same way (its monomials get variables too).
 model::LphSystem to_lph(const model::System& system, std::vector<model::Polynomial>* lph_equations = nullptr);
 
 // An L/P/H system as a polynomial system over all its variables, in the order above. The
 // linear equations are named `linear_names[k]` when given; the others after what they define.
+// Linear inequalities become (non-strict) inequalities of the result.
 model::System lph_polynomials(const model::LphSystem& lph, const std::vector<std::string>& linear_names = {});
 
 }  // namespace linkbox::formulate

@@ -1,5 +1,6 @@
 #include "input/case_file.hpp"
 
+#include "input/peer_case.hpp"
 #include "input/toml_reader.hpp"
 
 #include <cerrno>
@@ -26,9 +27,49 @@ const std::map<std::string, Reader>& kinds() {
   return readers;
 }
 
+// [solve]
+// sigma = 0.1         # solution box size
+// rho = 0.99          # split when a shrink keeps more than this of the volume
+// prune = "hc4,newton/lp"
+// bisect = "widest"
+// time_limit = 60     # seconds
+SolveSettings read_solve_table(const toml::table& root, const TomlReader& r) {
+  SolveSettings s;
+  const toml::node* n = root.get("solve");
+  if (!n) return s;
+  const toml::table& t = r.table(*n, "the [solve] table");
+  s.line = TomlReader::line_of(t);
+  r.only_keys(t, {"sigma", "rho", "prune", "bisect", "time_limit"}, "the [solve] table");
+  auto positive = [&](const char* key, bool zero_ok, double max) -> std::optional<double> {
+    const toml::node* v = t.get(key);
+    if (!v) return std::nullopt;
+    const double x = r.number(*v, std::string("solve.") + key).upper();
+    if (!(x > 0 || (zero_ok && x == 0)) || x > max)
+      r.fail(*v, std::string("solve.") + key + " must be " + (zero_ok ? "at least 0" : "greater than 0") +
+                     (max < 1e300 ? " and at most " + std::to_string(static_cast<int>(max)) : ""));
+    return x;
+  };
+  s.sigma = positive("sigma", false, 1e308);
+  s.rho = positive("rho", false, 1);
+  s.time_limit = positive("time_limit", true, 1e308);
+  if (auto* v = t.get("prune")) s.prune = r.string(*v, "solve.prune");
+  if (auto* v = t.get("bisect")) s.bisect = r.string(*v, "solve.bisect");
+  return s;
+}
+
 }  // namespace
 
 Case read_case_text(std::string_view text, const std::string& file) {
+  // The peers' formats (Minibex .bch, CuikSuite .cuik) hold polynomial systems; the extension
+  // decides, as it does for the peers' own tools.
+  if (const PeerReader read_peer = peer_reader_for(file)) {
+    Case c;
+    c.kind = "polynomial";
+    c.name = peer_case_name(file);
+    c.file = file;
+    c.description = read_peer(text, file).system;
+    return c;
+  }
   toml::table root;
   try {
     root = toml::parse(text, std::string_view(file));
@@ -47,6 +88,8 @@ Case read_case_text(std::string_view text, const std::string& file) {
     for (auto& [k, f] : kinds()) known += (known.empty() ? "" : ", ") + k;
     r.fail(kind_node, "unknown kind '" + c.kind + "' (known: " + known + ")");
   }
+  c.solve = read_solve_table(root, r);
+  root.erase("solve");  // the kinds' readers know only their own keys
   c.description = it->second(root, r);
   return c;
 }

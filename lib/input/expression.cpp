@@ -24,14 +24,20 @@ struct Value {
   Interval constant() const { return poly.constant_term(); }
 };
 
+using Lifted = model::Application::Function;
+
 struct Function {
   std::string_view name;
   Interval (*apply)(const Interval&);
+  bool liftable;  // of variables too, through model::lift
+  Lifted lifted;
 };
 constexpr Function kFunctions[] = {
-    {"sin", rigorous::sin},   {"cos", rigorous::cos},   {"tan", rigorous::tan},
-    {"asin", rigorous::asin}, {"acos", rigorous::acos}, {"atan", rigorous::atan},
-    {"sqrt", rigorous::sqrt}, {"exp", rigorous::exp},   {"log", rigorous::log},
+    {"sin", rigorous::sin, true, Lifted::sin},      {"cos", rigorous::cos, true, Lifted::cos},
+    {"tan", rigorous::tan, true, Lifted::tan},      {"asin", rigorous::asin, false, Lifted::sin},
+    {"acos", rigorous::acos, false, Lifted::sin},   {"atan", rigorous::atan, false, Lifted::sin},
+    {"sqrt", rigorous::sqrt, true, Lifted::sqrt},   {"exp", rigorous::exp, false, Lifted::sin},
+    {"log", rigorous::log, false, Lifted::sin},
 };
 
 const Function* find_function(std::string_view name) {
@@ -63,10 +69,18 @@ Polynomial monomial(const model::Powers& powers) {
   return m;
 }
 
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
 class Parser {
  public:
-  Parser(std::string_view text, const std::vector<std::string>& variables)
-      : text_(text), variables_(variables) {}
+  // `applications`: where functions of variables go (null: they are an error).
+  Parser(std::string_view text, const std::vector<std::string>& variables,
+         std::vector<model::Application>* applications = nullptr)
+      : text_(text), variables_(variables), applications_(applications) {}
 
   Value parse() {
     if (next_token() == text_.size()) fail("empty expression", 0);
@@ -117,12 +131,14 @@ class Parser {
   }
 
   Value power() {
+    const size_t base_at = next_token();
     Value base = primary();
     if (peek() != '^') return base;
     const size_t at = pos_++;
     const size_t exponent_at = next_token();
     Nesting guard(*this, at);
     const Value exponent = unary();  // right-associative; admits "-1" to reject it clearly
+    if (applications_ && is_half_integer(exponent)) return half_power(base, exponent, base_at, at, exponent_at);
     const int n = integer_exponent(exponent, exponent_at);
     Value r{Polynomial::constant(Interval(1.0)), base.has_variable};
     if (n == 0) return r;  // x^0 = 1, also for 0^0 (Boost's pow would return empty)
@@ -211,9 +227,18 @@ class Parser {
     Nesting guard(*this, open_at);
     const Value arg = expression();
     expect_closing(open_at);
-    if (arg.has_variable)
+    if (arg.has_variable && applications_) {
+      if (!f.liftable)
+        fail(std::string(f.name) + " of an expression with variables: functions apply to constants only, except "
+                                   "sin, cos, tan and sqrt (which are lifted to new unknowns)",
+             name_at);
+      if (!arg.poly.is_constant())
+        return application(f.lifted, arg.poly, std::string(text_.substr(name_at, pos_ - name_at)));
+      // Folded to a constant (sin(x - x)): evaluated as one below.
+    } else if (arg.has_variable) {
       fail(std::string(f.name) + " of an expression with variables: functions apply to constants only",
            name_at);
+    }
     try {
       Value r{Polynomial::constant(f.apply(arg.constant())), false};
       check_finite(r, name_at);
@@ -223,6 +248,49 @@ class Parser {
       const std::string prefix = std::string(f.name) + ":";
       fail(why.rfind(prefix, 0) == 0 ? why : prefix + " " + why, name_at);
     }
+  }
+
+  // The variable standing for f(argument): an equal application is reused, so sin(t) written
+  // twice is one unknown.
+  Value application(Lifted f, const Polynomial& argument, std::string text) {
+    auto& apps = *applications_;
+    size_t k = 0;
+    while (k < apps.size() && !(apps[k].function == f && model::same(apps[k].argument, argument))) ++k;
+    if (k == apps.size()) apps.push_back({f, argument, std::move(text)});
+    return Value{Polynomial::variable(static_cast<int>(variables_.size() + k)), true};
+  }
+
+  static bool is_half_integer(const Value& e) {
+    const Interval x = e.constant();
+    if (e.has_variable || x.lower() != x.upper() || x.lower() < 0) return false;
+    const double twice = 2 * x.lower();  // exact: a double times 2
+    return std::floor(twice) == twice && std::floor(x.lower()) != x.lower();
+  }
+
+  // base^(n + 1/2) = base^n * sqrt(base): a constant, or an application of sqrt.
+  Value half_power(const Value& base, const Value& exponent, size_t base_at, size_t at, size_t exponent_at) {
+    const double e = exponent.constant().lower();
+    if (e > kMaxExponent) fail("exponent is larger than " + std::to_string(kMaxExponent), exponent_at);
+    const int n = static_cast<int>(std::floor(e));
+    Value root;
+    if (!base.has_variable) {
+      try {
+        root = Value{Polynomial::constant(rigorous::sqrt(base.constant())), false};
+      } catch (const std::domain_error&) {
+        fail("half-integer power of a negative number", at);
+      }
+    } else {
+      root = application(Lifted::sqrt, base.poly,
+                         "sqrt(" + std::string(trim(text_.substr(base_at, at - base_at))) + ")");
+    }
+    Value r = root;
+    Value b = base;
+    for (int k = n; k > 0; k >>= 1) {
+      if (k & 1) r = multiply(r, b, at);
+      if (k > 1) b = multiply(b, b, at);
+    }
+    check_finite(r, at);
+    return r;
   }
 
   Value multiply(const Value& a, const Value& b, size_t at) {
@@ -244,7 +312,9 @@ class Parser {
   int integer_exponent(const Value& e, size_t at) {
     const Interval x = e.constant();
     if (e.has_variable || x.lower() != x.upper() || x.lower() < 0 || std::floor(x.lower()) != x.lower())
-      fail("exponent must be a non-negative integer constant", at);
+      fail(applications_ ? "exponent must be a non-negative integer or half-integer constant (x^(1/2) is sqrt(x))"
+                         : "exponent must be a non-negative integer constant",
+           at);
     if (x.lower() > kMaxExponent) fail("exponent is larger than " + std::to_string(kMaxExponent), at);
     return static_cast<int>(x.lower());
   }
@@ -298,6 +368,7 @@ class Parser {
 
   std::string_view text_;
   const std::vector<std::string>& variables_;
+  std::vector<model::Application>* applications_;
   size_t pos_ = 0;
   int depth_ = 0;
 };
@@ -306,6 +377,68 @@ class Parser {
 
 model::Polynomial parse_polynomial(std::string_view text, const std::vector<std::string>& variables) {
   return Parser(text, variables).parse().poly;
+}
+
+model::Polynomial parse_with_functions(std::string_view text, const std::vector<std::string>& variables,
+                                       std::vector<model::Application>& applications) {
+  return Parser(text, variables, &applications).parse().poly;
+}
+
+namespace {
+
+// One side of a comparison, its errors placed in the whole text.
+Polynomial parse_side(std::string_view text, size_t offset, const std::vector<std::string>& variables,
+                      std::vector<model::Application>& applications) {
+  try {
+    return Parser(text, variables, &applications).parse().poly;
+  } catch (const ParseError& e) {
+    throw ParseError(e.what(), e.column + static_cast<int>(offset));
+  }
+}
+
+}  // namespace
+
+model::Polynomial parse_equation(std::string_view text, const std::vector<std::string>& variables,
+                                 std::vector<model::Application>& applications) {
+  size_t eq = std::string_view::npos;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '<' || text[i] == '>')
+      throw ParseError("a comparison in an equation: inequalities go under 'inequalities'", static_cast<int>(i));
+    if (text[i] != '=') continue;
+    if (eq != std::string_view::npos) throw ParseError("more than one '=' in an equation", static_cast<int>(i));
+    eq = i;
+  }
+  if (eq == std::string_view::npos) return parse_side(text, 0, variables, applications);
+  const Polynomial lhs = parse_side(text.substr(0, eq), 0, variables, applications);
+  const Polynomial rhs = parse_side(text.substr(eq + 1), eq + 1, variables, applications);
+  return lhs - rhs;
+}
+
+model::Inequality parse_inequality(std::string_view text, const std::vector<std::string>& variables,
+                                   std::vector<model::Application>& applications) {
+  size_t op = std::string_view::npos;
+  size_t width = 1;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '=' && (i == 0 || (text[i - 1] != '<' && text[i - 1] != '>')))
+      throw ParseError(i + 1 < text.size() && (text[i + 1] == '<' || text[i + 1] == '>')
+                           ? "write <= or >=, not =< or =>"
+                           : "'=' in an inequality (write <=, >=, < or >; equations go under 'equations')",
+                       static_cast<int>(i));
+    if (c != '<' && c != '>') continue;
+    if (op != std::string_view::npos)
+      throw ParseError("more than one comparison (write a chain a <= x <= b as two inequalities)", static_cast<int>(i));
+    op = i;
+    width = i + 1 < text.size() && text[i + 1] == '=' ? 2 : 1;
+  }
+  if (op == std::string_view::npos) throw ParseError("no comparison: an inequality needs <=, >=, < or >", 0);
+  const Polynomial lhs = parse_side(text.substr(0, op), 0, variables, applications);
+  const Polynomial rhs = parse_side(text.substr(op + width), op + width, variables, applications);
+  model::Inequality c;
+  c.g = text[op] == '<' ? lhs - rhs : rhs - lhs;
+  c.strict = width == 1;
+  c.name = std::string(trim(text));
+  return c;
 }
 
 Interval parse_constant(std::string_view text) {

@@ -14,6 +14,11 @@
 //   function: sin cos tan asin acos atan sqrt exp log, of constant arguments only.
 // Exponents are exact non-negative integers (at most kMaxExponent); divisors are constant
 // expressions whose interval excludes 0.
+//
+// parse_with_functions also admits sin, cos, tan and sqrt of expressions with variables,
+// and exponents k + 1/2 (x^(1/2) is sqrt(x)); they are kept as model::Application for
+// model::lift, which turns them into polynomial equations in new unknowns.
+#include "model/lifting.hpp"
 #include "model/polynomial.hpp"
 
 #include <stdexcept>
@@ -34,6 +39,22 @@ struct ParseError : std::runtime_error {
 // Parses `text` as a polynomial in `variables` (variable i of the result = variables[i]).
 // A declared variable named like a constant (`pi`) shadows it.
 model::Polynomial parse_polynomial(std::string_view text, const std::vector<std::string>& variables);
+
+// Like parse_polynomial, but sin, cos, tan and sqrt of expressions with variables (and
+// exponents k + 1/2) become applications: each distinct one is appended to `applications`
+// once (an equal one already there is reused) and stands for variable
+// variables.size() + its index.
+model::Polynomial parse_with_functions(std::string_view text, const std::vector<std::string>& variables,
+                                       std::vector<model::Application>& applications);
+
+// An equation "lhs = rhs" (lhs - rhs = 0) or an expression (= 0), with functions as above.
+model::Polynomial parse_equation(std::string_view text, const std::vector<std::string>& variables,
+                                 std::vector<model::Application>& applications);
+
+// "lhs <= rhs", ">=", "<" or ">" as g <= 0 (strict for < and >), g = lhs - rhs (or rhs - lhs),
+// with functions as above. `name` of the result is the text.
+model::Inequality parse_inequality(std::string_view text, const std::vector<std::string>& variables,
+                                   std::vector<model::Application>& applications);
 
 // Parses a constant expression such as "pi/2", "acos(-1/3)" or "-0.7448995469549714".
 Interval parse_constant(std::string_view text);

@@ -23,6 +23,9 @@
 //   name = "bridgehead"                      # optional
 //   joints = ["c2-c3", "c2-c7"]
 //   angle = 1.91
+//   [joint_limits]                           # optional: revolute joint angles, radians
+//   theta1 = ["-pi/2", "pi/2"]               # theta1 in [-pi/2, pi/2]
+//   theta4 = [2.5, 3.8]                      # modulo 2 pi: an arc through pi
 //
 // Per entry: `a` the link length (any real: a negative one runs along -a_i), `alpha` the twist (radians), `d` the
 // offset along the joint axis from a_{i-1} to a_i. `type` is "revolute" (default: theta is
@@ -35,6 +38,12 @@
 // same two joints in several loops has one normal; a link that leads to different joints in
 // different loops (a bridgehead atom) is tied only by the angle constraints given, as in the
 // paper's bicyclohexane. The joint angle of a shared joint is measured in the first loop.
+//
+// A joint limit [lo, hi] keeps a revolute joint's angle (the one reported, in (-pi, pi]) on
+// the arc from lo to hi, modulo 2 pi: lo <= hi, hi - lo at most a full turn. Only
+// configurations within every limit are roots; the search prunes with the limits and
+// verification proves each certified root within them (or says it is on a limit). A
+// prismatic joint is limited by its range d = [lo, hi].
 #include "input/linkage_file.hpp"
 
 #include "input/toml_reader.hpp"
@@ -83,7 +92,8 @@ LoopLink read_entry(const TomlReader& r, const toml::node& n, const std::string&
 }  // namespace
 
 LinkageCase read_linkage(const toml::table& root, const TomlReader& r) {
-  r.only_keys(root, {"kind", "name", "description", "ground", "loops", "angle_constraints"}, "a linkage case");
+  r.only_keys(root, {"kind", "name", "description", "ground", "loops", "angle_constraints", "joint_limits"},
+              "a linkage case");
   LinkageCase c;
   c.file = r.file();
   c.name = r.string(r.required(root, "name", "case name"), "name");
@@ -112,6 +122,19 @@ LinkageCase read_linkage(const toml::table& root, const TomlReader& r) {
       a.joint2 = r.string(*pair->get(1), "joint name");
       a.angle = r.number(r.required(t, "angle", "angle of the angle constraint"), "angle");
       c.angle_constraints.push_back(std::move(a));
+    }
+  }
+
+  if (const toml::node* limits = root.get("joint_limits")) {
+    const toml::table& t = r.table(*limits, "joint_limits (a table: joint = [lower, upper])");
+    for (auto&& [key, value] : t) {
+      JointLimit l;
+      l.joint = std::string(key.str());
+      l.line = TomlReader::line_of(value);
+      const std::vector<Interval> b = r.numbers(value, 2, "joint limit of '" + l.joint + "'");
+      l.lower = b[0];
+      l.upper = b[1];
+      c.joint_limits.push_back(std::move(l));
     }
   }
 

@@ -42,6 +42,14 @@ struct AngleConstraint {
   int line = 0;
 };
 
+// The angle of a revolute joint (as reported: in its first loop, from the normal before it
+// to the normal after it) kept in [lower, upper] modulo 2 pi: an arc of at most a full turn.
+struct JointLimit {
+  std::string joint;
+  Interval lower, upper;  // enclosures of the bounds as written
+  int line = 0;
+};
+
 struct LinkageCase {
   std::string name;
   std::string file;    // for messages
@@ -49,6 +57,7 @@ struct LinkageCase {
   int ground_line = 0;
   std::vector<LinkageLoop> loops;
   std::vector<AngleConstraint> angle_constraints;
+  std::vector<JointLimit> joint_limits;
 };
 
 // Names, topology and parameters (see linkage_validate.cpp); throws InputError.

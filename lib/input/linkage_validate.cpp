@@ -1,5 +1,7 @@
 #include "input/linkage_file.hpp"
 
+#include "interval/rigorous.hpp"
+
 #include <boost/pending/disjoint_sets.hpp>
 
 #include <map>
@@ -27,7 +29,9 @@ std::string at_line(int line) { return " (line " + std::to_string(line) + ")"; }
 //  - parameters finite, prismatic ranges non-empty;
 //  - the ground link exists; angle constraints name two different known joints;
 //  - every loop is tied to the ground's loops through shared joints or angle constraints
-//    (a loop tied to nothing could turn freely as a whole).
+//    (a loop tied to nothing could turn freely as a whole);
+//  - joint limits name a known revolute joint once, with lower <= upper and at most a full
+//    turn between them.
 void validate(const LinkageCase& c) {
   auto fail = [&](int line, const std::string& m) { throw InputError(c.file, line, m); };
   if (c.loops.empty()) fail(0, "no loops");
@@ -133,6 +137,24 @@ void validate(const LinkageCase& c) {
     if (!is_finite(a.angle)) fail(a.line, "angle constraint angle is not finite");
     unite(loops_of_joint[a.joint1].front(), loops_of_joint[a.joint2].front());
   }
+  std::map<std::string, int> limit_lines;
+  const Interval turn = Interval(2.0) * rigorous::pi();
+  for (const JointLimit& l : c.joint_limits) {
+    auto j = joints.find(l.joint);
+    if (j == joints.end()) fail(l.line, "joint limit for unknown joint " + quote(l.joint));
+    if (j->second.entry->prismatic)
+      fail(l.line, "joint " + quote(l.joint) + " is prismatic: its range is its offset d = [lower, upper], not a joint limit");
+    if (auto [it, fresh] = limit_lines.emplace(l.joint, l.line); !fresh)
+      fail(l.line, "second joint limit for joint " + quote(l.joint) + " (first on line " + std::to_string(it->second) + ")");
+    if (!is_finite(l.lower) || !is_finite(l.upper)) fail(l.line, "joint limit of " + quote(l.joint) + " is not finite");
+    if (l.lower.lower() > l.upper.upper())
+      fail(l.line, "joint limit of " + quote(l.joint) + ": lower bound exceeds upper bound (an arc through pi is written "
+                   "with upper > pi, e.g. [2.5, 3.8])");
+    if ((Interval(l.upper.lower()) - Interval(l.lower.upper())).lower() > turn.upper())
+      fail(l.line, "joint limit of " + quote(l.joint) + " spans more than a full turn (2*pi): angles are reported modulo "
+                   "2*pi, so give at most one turn, e.g. [-pi, pi] for no limit");
+  }
+
   for (size_t l = 0; l < c.loops.size(); ++l)
     if (tied.find_set(static_cast<int>(l)) != tied.find_set(ground->second))
       fail(c.loops[l].line, "loop " + quote(c.loops[l].name) + " is not tied to the ground link " + quote(c.ground) +

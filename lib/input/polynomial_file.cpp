@@ -5,21 +5,71 @@
 //   description = "..."                                  # optional
 //   variables = [ { name = "x", domain = [-2, 2] },       # or [[variables]] tables
 //                 { name = "y", domain = ["-pi", "pi/2"] } ]
-//   equations = [ "x^2 + y^2 - 1",                        # each means  expression = 0
+//   equations = [ "x^2 + y^2 - 1",                        # expression = 0, or
+//                 "x^2 = y + 1",                            # lhs = rhs
 //                 { name = "line", equation = "x - y" } ]
+//   inequalities = [ "x >= 0",                            # optional: <=, >=, < or >
+//                    { name = "clearance", inequality = "x^2 + y^2 > 0.25" } ]
 //
 // Numbers are TOML integers, floats (enclosed as the decimal written) or constant expression
-// strings; equations use the grammar of input/expression.hpp.
+// strings; equations and inequalities use the grammar of input/expression.hpp, with sin, cos,
+// tan and sqrt of variables lifted by model::lift (model/lifting.hpp says what is accepted).
+// Domains are bounded: an infinite bound is rejected with a suggested finite one.
 #include "input/polynomial_file.hpp"
 
 #include "input/expression.hpp"
 #include "input/toml_reader.hpp"
+#include "model/lifting.hpp"
 
+#include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <map>
 
 namespace linkbox::input {
 
 namespace {
+
+// An infinite bound ([-inf, 1], or "inf" as a string): linkbox encloses roots in a bounded box
+// only, so the message suggests a finite bound rather than inventing one (a change of
+// variables onto a bounded interval would make the certificates speak of another system).
+void reject_unbounded(const TomlReader& r, const toml::node& d, const std::string& what) {
+  const toml::array* a = d.as_array();
+  if (!a || a->size() != 2) return;
+  int infinite = -1;  // bit 0: lower, bit 1: upper
+  double finite_magnitude = 0;
+  std::string written;
+  for (size_t k = 0; k < 2; ++k) {
+    const toml::node& e = *a->get(k);
+    bool inf = false;
+    if (auto* f = e.as_floating_point()) {
+      inf = std::isinf(f->get());
+      if (!inf) finite_magnitude = std::max(finite_magnitude, std::fabs(f->get()));
+      else if (written.empty()) written = f->get() < 0 ? "-inf" : "+inf";
+    } else if (auto* s = e.as_string()) {
+      std::string lower;
+      for (char c : s->get())
+        if (c != ' ') lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      inf = lower == "inf" || lower == "-inf" || lower == "+inf" || lower == "infinity" || lower == "-infinity" ||
+            lower == "+infinity";
+      if (inf && written.empty()) written = s->get();
+    } else if (auto* i = e.as_integer()) {
+      finite_magnitude = std::max(finite_magnitude, std::fabs(static_cast<double>(i->get())));
+    }
+    if (inf) infinite = infinite < 0 ? static_cast<int>(1 << k) : infinite | static_cast<int>(1 << k);
+  }
+  if (infinite < 0) return;
+  const double m = std::pow(10.0, std::ceil(std::log10(std::max(1000.0, 10 * finite_magnitude))));
+  char bound[64];
+  std::snprintf(bound, sizeof bound, "%g", m);
+  std::string lo = "-" + std::string(bound), hi = bound;
+  if (!(infinite & 1)) lo = "<its lower bound>";
+  if (!(infinite & 2)) hi = "<its upper bound>";
+  r.fail(d, what + " must be finite, found " + written +
+                ": linkbox encloses roots in a bounded domain only (unbounded domains are not mapped onto bounded "
+                "ones). Give finite bounds that every root of interest satisfies, e.g. [" + lo + ", " + hi +
+                "]: a generous bound costs a few more bisections, a root beyond it is not reported");
+}
 
 model::Variable read_variable(const TomlReader& r, const toml::node& n) {
   const toml::table& t = r.table(n, "a variable");
@@ -32,6 +82,7 @@ model::Variable read_variable(const TomlReader& r, const toml::node& n) {
                   "nan, inf or a function name)");
   const std::string what = "domain of variable '" + v.name + "'";
   const toml::node& d = r.required(t, "domain", what);
+  reject_unbounded(r, d, what);
   const std::vector<Interval> bounds = r.numbers(d, 2, what);
   // Outward: the lower end of the lower bound's enclosure, the upper end of the upper one's.
   if (bounds[0].lower() > bounds[1].upper()) r.fail(d, "empty " + what + ": lower bound exceeds upper bound");
@@ -39,34 +90,45 @@ model::Variable read_variable(const TomlReader& r, const toml::node& n) {
   return v;
 }
 
-void read_equation(const TomlReader& r, const toml::node& n, size_t number, model::System& s) {
-  std::string name;
+// Lines of what a LiftError may point at.
+struct Lines {
+  std::vector<int> variable, equation, inequality, application;
+};
+
+std::vector<std::string> names_of(const model::RawSystem& s) {
+  std::vector<std::string> n;
+  for (auto& v : s.variables) n.push_back(v.name);
+  return n;
+}
+
+// One entry of `equations` or `inequalities`: a string, or a table { name, <key> }.
+template <class Parse>
+void read_constraint(const TomlReader& r, const toml::node& n, const char* kind, const char* key, size_t number,
+                     model::RawSystem& s, Lines& lines, std::string& name, Parse&& parse) {
   const toml::node* text_node = &n;
   if (auto* t = n.as_table()) {
-    r.only_keys(*t, {"name", "equation"}, "an equation");
-    if (auto* nm = t->get("name")) name = r.string(*nm, "equation name");
-    text_node = &r.required(*t, "equation", "equation text");
+    r.only_keys(*t, {"name", key}, std::string("an ") + kind);
+    if (auto* nm = t->get("name")) name = r.string(*nm, std::string(kind) + " name");
+    text_node = &r.required(*t, key, std::string(kind) + " text");
   }
-  const std::string label = "equation " + std::to_string(number) + (name.empty() ? "" : " '" + name + "'");
+  const std::string label = std::string(kind) + " " + std::to_string(number) + (name.empty() ? "" : " '" + name + "'");
   const std::string text = r.string(*text_node, label);
-  model::Polynomial p;
   try {
-    p = parse_polynomial(text, s.names());
+    const bool constant = parse(text);
+    if (constant) r.fail(*text_node, label + " " + quote_text(text) + " involves no variable (it is constant)");
   } catch (const ParseError& e) {
     r.fail(*text_node,
            label + " " + quote_text(text) + ": " + e.what() + " (column " + std::to_string(e.column) + ")");
   }
-  if (p.variables().empty())
-    r.fail(*text_node, label + " " + quote_text(text) + " involves no variable (it is constant)");
-  s.equations.push_back(std::move(p));
-  s.equation_names.push_back(name);
+  while (lines.application.size() < s.applications.size()) lines.application.push_back(TomlReader::line_of(*text_node));
 }
 
 }  // namespace
 
 model::System read_polynomial(const toml::table& root, const TomlReader& r) {
-  r.only_keys(root, {"kind", "name", "description", "variables", "equations"}, "a polynomial case");
-  model::System s;
+  r.only_keys(root, {"kind", "name", "description", "variables", "equations", "inequalities"}, "a polynomial case");
+  model::RawSystem s;
+  Lines lines;
   std::map<std::string, int> declared_on;
   const toml::array& vars = r.array(r.required(root, "variables", "variables"), "variables");
   if (vars.empty()) r.fail(vars, "no variables");
@@ -76,11 +138,42 @@ model::System read_polynomial(const toml::table& root, const TomlReader& r) {
       r.fail(n,
              "duplicate variable '" + v.name + "' (first declared on line " + std::to_string(it->second) + ")");
     s.variables.push_back(std::move(v));
+    lines.variable.push_back(TomlReader::line_of(n));
   }
+  const std::vector<std::string> names = names_of(s);
   const toml::array& eqs = r.array(r.required(root, "equations", "equations"), "equations");
   if (eqs.empty()) r.fail(eqs, "no equations");
-  for (size_t i = 0; i < eqs.size(); ++i) read_equation(r, eqs[i], i + 1, s);
-  return s;
+  for (size_t i = 0; i < eqs.size(); ++i) {
+    std::string name;
+    read_constraint(r, eqs[i], "equation", "equation", i + 1, s, lines, name, [&](const std::string& text) {
+      s.equations.push_back(parse_equation(text, names, s.applications));
+      return s.equations.back().variables().empty();
+    });
+    s.equation_names.push_back(name);
+    lines.equation.push_back(TomlReader::line_of(eqs[i]));
+  }
+  if (const toml::node* ineqs = root.get("inequalities")) {
+    const toml::array& list = r.array(*ineqs, "inequalities");
+    for (size_t i = 0; i < list.size(); ++i) {
+      std::string name;
+      read_constraint(r, list[i], "inequality", "inequality", i + 1, s, lines, name, [&](const std::string& text) {
+        s.inequalities.push_back(parse_inequality(text, names, s.applications));
+        return s.inequalities.back().g.variables().empty();
+      });
+      if (!name.empty()) s.inequalities.back().name = name + ": " + s.inequalities.back().name;
+      lines.inequality.push_back(TomlReader::line_of(list[i]));
+    }
+  }
+  try {
+    return model::lift(s);
+  } catch (const model::LiftError& e) {
+    int line = 0;
+    if (e.variable >= 0) line = lines.variable.at(e.variable);
+    else if (e.application >= 0) line = lines.application.at(e.application);
+    else if (e.equation >= 0) line = lines.equation.at(e.equation);
+    else if (e.inequality >= 0) line = lines.inequality.at(e.inequality);
+    r.fail(line, e.what());
+  }
 }
 
 model::System read_polynomial(const toml::table& root, const std::string& file, std::string_view text) {

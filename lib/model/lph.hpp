@@ -13,6 +13,13 @@ struct LinearEquation {
   Interval rhs;                                 // ... = rhs (interval: rigorous constants)
 };
 
+// sum coef * v[index] <= rhs: an inequality of the system, linear in the lifted variables.
+struct LinearInequality {
+  std::vector<std::pair<int, Interval>> terms;
+  Interval rhs;
+  std::string name;
+};
+
 struct Parabolic {
   int q, x;  // q = x^2
 };
@@ -27,6 +34,9 @@ struct LphSystem {
   std::vector<LinearEquation> linear;
   std::vector<Parabolic> parabolic;
   std::vector<Hyperbolic> hyperbolic;
+  // g <= 0 for each inequality of the system (strict ones too: the closure is what a
+  // relaxation can use), with g's monomials replaced by their variables.
+  std::vector<LinearInequality> inequalities;
 
   Box domain() const;
 };

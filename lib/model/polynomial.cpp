@@ -181,6 +181,22 @@ std::string Polynomial::to_string(const std::vector<std::string>& names) const {
   return os.str();
 }
 
+Side side_of(const Inequality& c, const Box& box) {
+  const Interval g = c.g.eval(box);
+  if (c.strict ? g.upper() < 0 : g.upper() <= 0) return Side::inside;
+  if (c.strict ? g.lower() >= 0 : g.lower() > 0) return Side::outside;
+  return Side::boundary;
+}
+
+const char* to_string(Side s) {
+  switch (s) {
+    case Side::inside: return "inside";
+    case Side::outside: return "outside";
+    case Side::boundary: return "boundary";
+  }
+  return "?";
+}
+
 Box System::domain() const {
   Box b;
   for (auto& v : variables) b.push_back(v.domain);

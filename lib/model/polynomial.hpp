@@ -3,6 +3,7 @@
 #include "interval/box.hpp"
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -59,11 +60,35 @@ struct Variable {
   Interval domain;
 };
 
-// A system of equations p_i = 0 over named variables with domains.
+// g(x) <= 0, or g(x) < 0 when strict. Interval coefficients stand for the true constants
+// they enclose: a point is proved feasible only when g's enclosure there is <= 0 (< 0) for
+// every choice of coefficients, and proved infeasible only when it is > 0 (>= 0) for every
+// choice, so a rounded constant never decides a root's side.
+struct Inequality {
+  Polynomial g;
+  bool strict = false;
+  std::string name;  // for messages: as the user wrote it, e.g. "x + y <= 1"
+};
+
+// Where a box lies with respect to an inequality: every point satisfies it (inside), none
+// does (outside), or the enclosure cannot tell (boundary: the box may straddle g = 0).
+enum class Side { inside, outside, boundary };
+Side side_of(const Inequality& c, const Box& box);
+const char* to_string(Side s);
+
+struct Lifting;  // model/lifting.hpp
+
+// A system of equations p_i = 0 and inequalities over named variables with domains.
 struct System {
   std::vector<Variable> variables;
   std::vector<Polynomial> equations;
   std::vector<std::string> equation_names;  // same length as equations (may be empty strings)
+  // Constraints that select among the roots: pruning may use them (a box where one provably
+  // fails holds no root of interest); roots are reported only where all of them hold.
+  std::vector<Inequality> inequalities;
+  // When the case's own variables were lifted (functions of variables, model/lifting.hpp):
+  // how they follow from `variables` and back. Null: `variables` are the case's own.
+  std::shared_ptr<const Lifting> lifting;
 
   Box domain() const;
   bool is_multi_affine() const;

@@ -57,6 +57,27 @@ std::optional<Eigen::MatrixXd> inverse(const Eigen::MatrixXd& j, double min_rcon
   return c;
 }
 
+// Proves that the interval matrix `j` holds a singular matrix, so that no Newton test can
+// succeed on its box: with M the midpoint and v a float null vector of M (its last right
+// singular vector), S = M - (M v) v^T / (v^T v) has S v = 0 exactly, and S lies in `j` when the
+// outward enclosure of each of its entries does. Sufficient, not necessary (false: not shown).
+bool holds_singular_matrix(const IMatrix& j) {
+  const Eigen::MatrixXd m = midpoint(j);
+  if (m.size() == 0 || m.rows() != m.cols() || !m.allFinite()) return false;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(m, Eigen::ComputeFullV);
+  const Eigen::VectorXd v = svd.matrixV().col(m.cols() - 1);
+  Interval vv(0.0);
+  for (int k = 0; k < v.size(); ++k) vv += Interval(v(k)) * Interval(v(k));
+  if (!(vv.lower() > 0)) return false;
+  for (int i = 0; i < m.rows(); ++i) {
+    Interval r(0.0);  // (M v)_i
+    for (int k = 0; k < m.cols(); ++k) r += Interval(m(i, k)) * Interval(v(k));
+    for (int k = 0; k < m.cols(); ++k)
+      if (!boost::numeric::subset(Interval(m(i, k)) - r * Interval(v(k)) / vv, j(i, k))) return false;
+  }
+  return true;
+}
+
 struct FloatRoot {
   Eigen::VectorXd x;
   bool finite = true;
@@ -203,15 +224,19 @@ Certificate certify_square(const SquareSystem& s, const Box& hull, const Box& do
       }
       if (!first_failure) first_failure = fail(attempt, r);
     }
-    if (root.size() == 0) return *first_failure;
+    if (root.size() == 0) {
+      if (first_failure->reason == Reason::singular_jacobian && holds_singular_matrix(s.jacobian(hull)))
+        first_failure->reason = Reason::singular_in_box;
+      return *first_failure;
+    }
     auto ci = inverse(s.jacobian_at(root), o.singular_rcond);
-    if (!ci) return fail(cert, Reason::singular_jacobian);
+    if (!ci) return fail(cert, holds_singular_matrix(s.jacobian(hull)) ? Reason::singular_in_box : Reason::singular_jacobian);
     c = *ci;
     cert.preconditioner = c;
     auto done = inflate(s, root, c, o, cert.box, step);
     if (!done) {
       cert.image = step.image;
-      return fail(cert, Reason::inflation_failed);
+      return fail(cert, holds_singular_matrix(s.jacobian(hull)) ? Reason::singular_in_box : Reason::inflation_failed);
     }
     x = done->first, step = done->second;
   }
@@ -328,6 +353,9 @@ const char* to_string(Reason r) {
     case Reason::non_finite: return "non-finite";
     case Reason::singular_jacobian: return "singular Jacobian";
     case Reason::inflation_failed: return "inflation failed";
+    case Reason::singular_in_box:
+      return "singular Jacobian in the cluster (its interval Jacobian holds a singular matrix: a multiple root, a "
+             "singular point, or a curve)";
     case Reason::outside_hull: return "root outside the hull";
     case Reason::outside_domain: return "root outside the domain";
     case Reason::no_root: return "no root (proved)";

@@ -20,6 +20,7 @@ enum class Reason {
   non_finite,         // NaN/inf in the input box or during evaluation
   singular_jacobian,  // the float Jacobian at the approximate root cannot be inverted
   inflation_failed,   // no inflated box passed the test (double root, ill-conditioned, none)
+  singular_in_box,    // PROVED: the interval Jacobian over the cluster holds a singular matrix
   outside_hull,       // Newton led to a root that is not in the given hull
   outside_domain,     // the certified root lies outside the domain (beyond the allowed slack)
   no_root,            // PROVED: the Newton image of the hull misses it, so it holds no root

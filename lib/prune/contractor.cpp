@@ -28,6 +28,17 @@ Counters& Counters::operator+=(const Counters& o) {
   volume_removed += o.volume_removed;
   lps_solved += o.lps_solved;
   lp_iterations += o.lp_iterations;
+  lp_paths += o.lp_paths;
+  return *this;
+}
+
+LpPaths& LpPaths::operator+=(const LpPaths& o) {
+  basis += o.basis, repaired += o.repaired, farkas += o.farkas, fallback += o.fallback, pivots += o.pivots;
+  return *this;
+}
+
+LpPaths& LpPaths::operator-=(const LpPaths& o) {
+  basis -= o.basis, repaired -= o.repaired, farkas -= o.farkas, fallback -= o.fallback, pivots -= o.pivots;
   return *this;
 }
 
@@ -73,11 +84,14 @@ Outcome Sequence::contract(Box& box, Backoff& backoff) {
     Box before = box;
     Contractor& member = *members_[i];
     const long lps = member.lps_solved(), iterations = member.lp_iterations();
+    const LpPaths paths = member.lp_paths();
     Outcome o = member.contract(box);
     Counters& c = counters_[i];
     c.calls++;
     c.lps_solved += member.lps_solved() - lps;
     c.lp_iterations += member.lp_iterations() - iterations;
+    c.lp_paths += member.lp_paths();
+    c.lp_paths -= paths;
     c.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (o == Outcome::empty) {
       c.emptied++;

@@ -4,6 +4,7 @@
 #include "interval/box.hpp"
 #include "prune/counters.hpp"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,9 +25,14 @@ class Contractor {
   // Whether the last contract() proved that the box it returned holds at most one root (see
   // IntervalNewton). A hint for the search to try a certificate; never a proof of existence.
   virtual bool at_most_one_root() const { return false; }
+  // Asked between the costly steps of one contract() (the LPs of a relaxation): when it
+  // returns true, the contractor returns what it has proved so far, so a time limit or an
+  // interrupt is honoured within one step. The function must outlive its use.
+  virtual void stop_when(const std::function<bool()>* request) { (void)request; }
   // Work done so far by an LP-based contractor (0 for the others), for the counters.
   virtual long lps_solved() const { return 0; }
   virtual long lp_iterations() const { return 0; }
+  virtual LpPaths lp_paths() const { return {}; }
 };
 
 // Applies its members in order; stops at the first `empty`. Keeps counters per member.
@@ -55,9 +61,13 @@ class Sequence final : public Contractor {
   std::unique_ptr<Contractor> clone() const override { return clone_sequence(); }
   std::unique_ptr<Sequence> clone_sequence() const;
   bool at_most_one_root() const override { return at_most_one_; }
+  void stop_when(const std::function<bool()>* request) override {
+    for (auto& m : members_) m->stop_when(request);
+  }
   const std::vector<std::unique_ptr<Contractor>>& members() const { return members_; }
   const std::vector<Counters>& counters() const { return counters_; }
   void add_counters(const Sequence& other);  // same members, e.g. a clone run elsewhere
+  void set_counters(std::vector<Counters> counters) { counters_ = std::move(counters); }  // a resumed run
 
  private:
   std::vector<std::unique_ptr<Contractor>> members_;

@@ -31,11 +31,17 @@ bool project_power(Interval& x, const FastInterval& p, int e) {
 
 }  // namespace
 
-Hc4::Hc4(const std::vector<model::Polynomial>& equations, Arith arith) : arith_(arith) {
-  for (auto& e : equations) {
+Hc4::Hc4(const std::vector<model::Polynomial>& equations, Arith arith, const std::vector<model::Inequality>& inequalities)
+    : equation_count_(equations.size()), arith_(arith) {
+  auto add = [&](const model::Polynomial& e) {
     std::vector<Term> terms;
     for (auto& [p, c] : e.terms()) terms.push_back({coefficient_for(arith, c), p});
     equations_.push_back(std::move(terms));
+  };
+  for (auto& e : equations) add(e);
+  for (auto& c : inequalities) {
+    add(c.g);
+    strict_.push_back(c.strict);
   }
 }
 
@@ -45,7 +51,9 @@ Outcome Hc4::contract(Box& box) {
 
 Outcome Hc4::revise(Box& box) {
   bool shrunk = false;
-  for (auto& terms : equations_) {
+  for (size_t row = 0; row < equations_.size(); ++row) {
+    const auto& terms = equations_[row];
+    const bool inequality = row >= equation_count_;
     const size_t n = terms.size();
     value_.resize(n);
     prefix_.resize(n + 1);
@@ -58,12 +66,19 @@ Outcome Hc4::revise(Box& box) {
     prefix_[0] = suffix_[n] = FastInterval(0.0);
     for (size_t m = 0; m < n; ++m) prefix_[m + 1] = prefix_[m] + value_[m];
     for (size_t m = n; m-- > 0;) suffix_[m] = suffix_[m + 1] + value_[m];
-    if (!zero_in(prefix_[n])) return Outcome::empty;
+    if (inequality) {
+      // g <= 0 fails throughout when g > 0 (a strict one also when g >= 0).
+      const double g = prefix_[n].lower();
+      if (strict_[row - equation_count_] ? g >= 0 : g > 0) return Outcome::empty;
+    } else if (!zero_in(prefix_[n])) {
+      return Outcome::empty;
+    }
     for (size_t m = 0; m < n; ++m) {
       if (terms[m].powers.empty()) continue;
-      // This term must cancel the others.
+      // This term must cancel the others (equation), or stay at most -others (inequality).
       const FastInterval others = prefix_[m] + suffix_[m + 1];
-      const double lo = std::max(value_[m].lower(), -others.upper()), hi = std::min(value_[m].upper(), -others.lower());
+      const double lo = inequality ? value_[m].lower() : std::max(value_[m].lower(), -others.upper());
+      const double hi = std::min(value_[m].upper(), -others.lower());
       if (!(lo <= hi)) return Outcome::empty;
       const FastInterval target(lo, hi);
       for (auto [k, ek] : terms[m].powers) {

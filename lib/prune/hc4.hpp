@@ -1,7 +1,8 @@
 #pragma once
 // HC4-revise on sums of monomials (forward evaluation, backward projection onto each
 // variable), the classic constraint-propagation baseline. Projections are made for linear
-// and squared occurrences; higher powers are only evaluated.
+// and squared occurrences; higher powers are only evaluated. Equations project the sum onto
+// 0, inequalities g <= 0 (or < 0) onto (-inf, 0]: a box where g > 0 throughout is empty.
 #include "model/polynomial.hpp"
 #include "prune/contractor.hpp"
 
@@ -10,7 +11,8 @@ namespace linkbox::prune {
 class Hc4 final : public Contractor {
  public:
   // Arith::float_unverified: the unverified variant (midpoint coefficients, nearest rounding).
-  explicit Hc4(const std::vector<model::Polynomial>& equations, Arith arith = Arith::verified);
+  explicit Hc4(const std::vector<model::Polynomial>& equations, Arith arith = Arith::verified,
+               const std::vector<model::Inequality>& inequalities = {});
   std::string name() const override { return arith_ == Arith::verified ? "hc4" : "hc4-float"; }
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override { return std::make_unique<Hc4>(*this); }
@@ -20,7 +22,9 @@ class Hc4 final : public Contractor {
     Interval coef;
     model::Powers powers;
   };
-  std::vector<std::vector<Term>> equations_;
+  std::vector<std::vector<Term>> equations_;  // then the inequalities' g
+  size_t equation_count_ = 0;
+  std::vector<char> strict_;  // per inequality
   std::vector<FastInterval> value_, prefix_, suffix_;  // scratch
   Arith arith_;
   Outcome revise(Box& box);

@@ -13,8 +13,10 @@ class Lifted final : public Contractor {
   std::string name() const override { return inner_->name(); }
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override;
+  void stop_when(const std::function<bool()>* request) override { inner_->stop_when(request); }
   long lps_solved() const override { return inner_->lps_solved(); }
   long lp_iterations() const override { return inner_->lp_iterations(); }
+  LpPaths lp_paths() const override { return inner_->lp_paths(); }
 
  private:
   model::LphSystem lph_;

@@ -112,6 +112,8 @@ Outcome LpRelaxation::contract(Box& box) {
   for (int var : system_->primary) {
     // Algorithm 2 lines 8-11. Each new bound is fed to the next LPs, as the paper's
     // in-place update of the box does.
+    // Every bound so far is proved: stopping here is sound, only less tight.
+    if (stop_ && (*stop_)()) break;
     Interval& range = work[var];
     if (!low_reached[var]) {
       const lp::LpBound low = solver_->minimize(var);

@@ -28,8 +28,10 @@ class LpRelaxation final : public Contractor {
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override;
 
+  void stop_when(const std::function<bool()>* request) override { stop_ = request; }
   long lps_solved() const override { return lps_solved_; }
   long lp_iterations() const override { return solver_->iterations(); }
+  LpPaths lp_paths() const override { return solver_->paths(); }
 
  private:
   LpRelaxation(std::shared_ptr<const model::LphSystem> system, lp::LpBackend backend);
@@ -38,6 +40,7 @@ class LpRelaxation final : public Contractor {
   lp::LpBackend backend_;
   std::unique_ptr<lp::LpSolver> solver_;  // per instance: holds warm-start state
   long lps_solved_ = 0;
+  const std::function<bool()>* stop_ = nullptr;
 };
 
 }  // namespace linkbox::prune

@@ -43,7 +43,9 @@ json result_json(const std::string& case_name, const std::string& case_file,
                      {"arith", to_string(options.strategy.arith)},
                      {"time_limit", p.time_limit},
                      {"max_boxes", p.max_boxes},
-                     {"threads", options.threads}};
+                     {"threads", options.threads},
+                     // where the settings came from: "flag", "case file", "checkpoint"; absent: default
+                     {"sources", options.setting_source}};
   // Model size of an L/P/H formulation (iterated-LP paper): primary, dummy, #L, #P, #H.
   if (formulation.subproblem_count() == 1) {
     const auto sub = formulation.subproblem(0);
@@ -53,6 +55,7 @@ json result_json(const std::string& case_name, const std::string& case_file,
                     {"linear", m.linear.size()}, {"parabolic", m.parabolic.size()}, {"hyperbolic", m.hyperbolic.size()}};
     }
   }
+  if (auto notes = formulation.model_notes(); !notes.empty()) j["model_notes"] = notes;  // e.g. what was lifted
   j["strategy"] = solve::strategy_name(result.strategy);  // what ran, "auto" resolved
   j["bisect"] = result.bisect;
   if (!result.subproblems.empty() && result.subproblems[0].race.size() > 1) {
@@ -62,6 +65,8 @@ json result_json(const std::string& case_name, const std::string& case_file,
   }
   j["complete"] = result.complete;
   if (!result.complete) j["stop_reason"] = result.stop_reason;
+  j["pending_boxes"] = result.pending_boxes;
+  j["volume_left"] = result.volume_left;  // unexplored share of the domain, averaged over sub-problems
   json stats = stats_json(result.total);
   stats["subproblems"] = result.subproblems.size();
   stats["seconds"] = result.seconds;
@@ -70,9 +75,13 @@ json result_json(const std::string& case_name, const std::string& case_file,
   json contractors = json::array();
   for (size_t k = 0; k < result.counters.size(); ++k) {
     auto& c = result.counters[k];
-    contractors.push_back({{"name", result.contractor_names.at(k)}, {"calls", c.calls}, {"emptied", c.emptied},
-                           {"volume_removed", c.volume_removed}, {"seconds", c.seconds},
-                           {"lps_solved", c.lps_solved}, {"lp_iterations", c.lp_iterations}});
+    json cj = {{"name", result.contractor_names.at(k)}, {"calls", c.calls}, {"emptied", c.emptied},
+               {"volume_removed", c.volume_removed}, {"seconds", c.seconds},
+               {"lps_solved", c.lps_solved}, {"lp_iterations", c.lp_iterations}};
+    if (c.lp_paths.any())  // the exact LP backend only
+      cj["lp_paths"] = {{"basis", c.lp_paths.basis}, {"repaired", c.lp_paths.repaired}, {"farkas", c.lp_paths.farkas},
+                        {"fallback", c.lp_paths.fallback}, {"pivots", c.lp_paths.pivots}};
+    contractors.push_back(cj);
   }
   j["contractors"] = contractors;
   json subs = json::array(), sols = json::array();
@@ -83,6 +92,10 @@ json result_json(const std::string& case_name, const std::string& case_file,
     sj["equations"] = s.equations;
     sj["variables"] = s.variables;
     sj["complete"] = s.complete;
+    sj["volume_left"] = s.volume_left;
+    json pending = json::array();  // in the search variables, as `search_box` of a solution
+    for (auto& b : s.pending) pending.push_back(box_json(b));
+    sj["pending"] = pending;
     subs.push_back(sj);
     for (size_t k = 0; k < s.solutions.size(); ++k) {
       const Box& box = s.solutions[k];
@@ -137,6 +150,10 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
   j["headline"] = r.headline;
   j["verification"] = {{"certified_roots", r.certified_roots}, {"unverified", r.unverified}, {"curves", r.curves}, {"empty", r.empty},
                        {"exact", r.exact}, {"seconds", r.seconds}};
+  if (r.inequalities) {
+    j["verification"]["inequalities"] = r.inequalities;
+    j["verification"]["infeasible"] = r.infeasible;
+  }
   json clusters = json::array();
   for (auto& c : r.clusters) {
     json cj = {{"status", verify::to_string(c.status)}, {"boxes", c.boxes.size()}, {"hull", box_json(c.hull)},
@@ -157,6 +174,10 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
       cj["distances"] = c.distances;
       cj["max_distance"] = c.max_distance;
     }
+    // Inequalities (natural system): the one violated or sat on, and those left undecided.
+    if (c.inequality >= 0) cj["inequality"] = c.inequality;
+    if (!c.straddled.empty()) cj["straddled_inequalities"] = c.straddled;
+    if (c.status == verify::ClusterStatus::infeasible && !c.root.empty()) cj["root"] = box_json(c.root);
     if (c.status != verify::ClusterStatus::curve) {
       cj["certificate"] = certificate_json(c.certificate);
       if (!c.subsystem.empty()) cj["subsystem"] = c.subsystem;

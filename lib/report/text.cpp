@@ -2,6 +2,14 @@
 
 namespace linkbox::report {
 
+namespace {
+std::string volume_text(double share) {
+  char t[32];
+  std::snprintf(t, sizeof t, "%.3g%%", 100 * share);
+  return t;
+}
+}  // namespace
+
 void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::RunOptions& o,
                    const solve::CaseResult& r) {
   const auto& f = *c.formulation;
@@ -28,18 +36,26 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
                o.params.order == solve::Order::depth_first ? "dfs" : "bfs", o.threads,
                r.rigorous ? "" : "  arith=float (UNVERIFIED: boxes discarded on float evidence)");
   std::fputs(race_line.c_str(), out);
+  // Where the settings came from, when not all are defaults: "sigma (case file), rho (flag)".
+  std::string sources;
+  for (auto& [name, from] : o.setting_source) sources += (sources.empty() ? "" : ", ") + name + " (" + from + ")";
+  if (!sources.empty()) std::fprintf(out, "settings  %s; the rest default\n", sources.c_str());
   if (f.subproblem_count() == 1)
     if (auto sub = f.subproblem(0); sub.lph)
       std::fprintf(out, "model     %zu primary + %zu dummy variables; %zu linear, %zu parabolic, %zu hyperbolic equations\n",
                    sub.lph->primary.size(), sub.lph->variables.size() - sub.lph->primary.size(), sub.lph->linear.size(),
                    sub.lph->parabolic.size(), sub.lph->hyperbolic.size());
+  for (auto& note : f.model_notes()) std::fprintf(out, "model     %s\n", note.c_str());
   std::fprintf(out, "\n%-12s %10s %10s %10s %10s %10s %10s\n", "subproblems", "processed", "empty", "split", "solution",
                "search [s]", "wall [s]");
   std::fprintf(out, "%-12zu %10ld %10ld %10ld %10ld %10.3f %10.3f\n", r.subproblems.size(), r.total.processed,
                r.total.empty, r.total.split, r.total.solution, r.total.seconds, r.seconds);
   std::fprintf(out, "\n%s\n",
                r.complete ? "complete: every box of the domain was processed"
-                          : ("INCOMPLETE (" + r.stop_reason + "): results cover only what was explored").c_str());
+                          : ("INCOMPLETE (" + r.stop_reason + "): results cover only what was explored; " +
+                             std::to_string(r.pending_boxes) + " boxes pending, " + volume_text(r.volume_left) +
+                             " of the domain's volume left")
+                                .c_str());
   const auto names = f.output_names();
   size_t total = 0;
   for (auto& s : r.subproblems) total += s.solutions.size();
@@ -75,6 +91,8 @@ void print_verification(std::FILE* out, const formulate::LoadedCase& c, const ve
                    cl.crossings.size());
     else if (cl.status == verify::ClusterStatus::unverified)
       std::fprintf(out, "  unverified cluster of %zu boxes: %s\n", cl.boxes.size(), cl.reason.c_str());
+    else if (cl.status == verify::ClusterStatus::infeasible)
+      std::fprintf(out, "  excluded cluster of %zu boxes: %s\n", cl.boxes.size(), cl.reason.c_str());
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace linkbox::solve {
 
@@ -13,6 +14,12 @@ std::string to_string(Bisect b) {
     case Bisect::smear: return "smear";
   }
   return "?";
+}
+
+Bisect parse_bisect(const std::string& name) {
+  for (Bisect b : {Bisect::automatic, Bisect::widest, Bisect::round_robin, Bisect::smear})
+    if (to_string(b) == name) return b;
+  throw std::invalid_argument("unknown bisection rule '" + name + "' (known: auto, widest, round-robin, smear)");
 }
 
 Bisector::Bisector(Bisect rule, const formulate::SubProblem& sub, double sigma)

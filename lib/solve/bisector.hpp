@@ -20,6 +20,7 @@ namespace linkbox::solve {
 enum class Bisect { automatic, widest, round_robin, smear };
 
 std::string to_string(Bisect b);
+Bisect parse_bisect(const std::string& name);  // throws std::invalid_argument naming the known rules
 
 class Bisector {
  public:

@@ -21,20 +21,16 @@ Stats& Stats::operator+=(const Stats& o) {
 }
 
 Budget::Budget(const Params& p)
-    : start_(std::chrono::steady_clock::now()), time_limit_(p.time_limit), max_boxes_(p.max_boxes) {}
+    : start_(std::chrono::steady_clock::now()),
+      time_limit_(p.time_limit),
+      max_boxes_(p.max_boxes),
+      interrupt_(p.interrupt) {}
 
 double Budget::elapsed() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
-bool Budget::take_box() {
-  if (exhausted()) return false;
-  long n = taken_.fetch_add(1) + 1;
-  const char* why = nullptr;
-  if (max_boxes_ > 0 && n > max_boxes_) why = "box limit reached";
-  // Reading the clock every box is cheap next to a shrink, but not free: every 16th.
-  else if (time_limit_ > 0 && (n & 15) == 0 && elapsed() > time_limit_) why = "time limit reached";
-  if (!why) return true;
+bool Budget::stop(const char* why) {
   static std::mutex m;
   std::lock_guard lock(m);
   if (!exhausted()) {
@@ -44,24 +40,41 @@ bool Budget::take_box() {
   return false;
 }
 
+bool Budget::take_box() {
+  if (exhausted()) return false;
+  long n = taken_.fetch_add(1) + 1;
+  if (interrupt_ && interrupt_->load(std::memory_order_relaxed)) return stop("interrupted");
+  if (max_boxes_ > 0 && n > max_boxes_) return stop("box limit reached");
+  // Reading the clock every box is cheap next to a shrink, but not free: every 16th.
+  if (time_limit_ > 0 && (n & 15) == 0 && elapsed() > time_limit_) return stop("time limit reached");
+  return true;
+}
+
+bool Budget::stop_now() {
+  if (exhausted()) return true;
+  if (interrupt_ && interrupt_->load(std::memory_order_relaxed)) return !stop("interrupted");
+  if (time_limit_ > 0 && elapsed() > time_limit_) return !stop("time limit reached");
+  return false;
+}
+
 namespace {
 
-// A box with its place in the search tree: '0' = lower half, '1' = upper half.
-struct Node {
-  Box box;
-  std::string path;
-  prune::Sequence::Backoff backoff;  // inherited from the parent (see Sequence)
-};
+using Node = SearchState::Node;
+using Found = SearchState::Found;
 
-enum class Verdict { empty, certified, solution, split };
+// stopped: a limit or an interrupt came while the box was being shrunk; it goes back to the
+// list as it was taken, so a resumed search does exactly what an unbroken one would.
+enum class Verdict { empty, certified, solution, split, stopped };
 
 // Shrinks until empty, certified, small, or no longer shrinking by more than rho.
 Verdict shrink(Box& box, prune::Sequence::Backoff& backoff, prune::Sequence& contractor, Certifier* certifier,
-               std::span<const int> dims, const Params& params, Stats& stats) {
+               std::span<const int> dims, const Params& params, const bool& cut, Stats& stats) {
   while (true) {
     Box before = box;
     stats.shrinks++;
-    if (contractor.contract(box, backoff) == prune::Outcome::empty) return Verdict::empty;
+    const prune::Outcome outcome = contractor.contract(box, backoff);
+    if (cut) return Verdict::stopped;
+    if (outcome == prune::Outcome::empty) return Verdict::empty;
     if (certifier && contractor.at_most_one_root()) {
       stats.certify_calls++;
       if (certifier->certify(box)) return Verdict::certified;
@@ -72,13 +85,6 @@ Verdict shrink(Box& box, prune::Sequence::Backoff& backoff, prune::Sequence& con
   }
 }
 
-
-struct Found {
-  std::string path;
-  Box box;
-  bool certified;
-};
-
 long lps_of(const prune::Sequence& c) {
   long n = 0;
   for (auto& k : c.counters()) n += k.lps_solved;
@@ -88,6 +94,8 @@ long lps_of(const prune::Sequence& c) {
 }  // namespace
 
 struct Search::State {
+  State(prune::Sequence& c, std::vector<int> dims, const Params& p, Budget& b, Certifier* cert, const Bisector* bis)
+      : contractor(c), split_dims(std::move(dims)), params(p), budget(b), certifier(cert), bisector(bis) {}
   prune::Sequence& contractor;
   std::vector<int> split_dims;
   Params params;
@@ -99,14 +107,20 @@ struct Search::State {
   Stats stats;
   double work = 0;
   double volume_done = 0;  // fraction of the start box's volume (split dims) resolved
+  double volume_pending = 1;  // and in pending boxes (what shrinking removed is in neither)
   Box start;
   bool stopped = false;  // by the budget
   double seconds = 0;
+  std::function<bool()> pause_request;
+  bool paused = false;  // the last run() returned on a pause request
+  std::atomic<long>* tally_pending = nullptr;
+  std::atomic<double>* tally_done = nullptr;
 };
 
 Search::Search(const Box& start, prune::Sequence& contractor, std::vector<int> split_dims, const Params& params,
                Budget& budget, Certifier* certifier, const Bisector* bisector)
-    : s_(new State{contractor, std::move(split_dims), params, budget, certifier, bisector, {}, {}, {}, 0, 0, start, false, 0}) {
+    : s_(new State(contractor, std::move(split_dims), params, budget, certifier, bisector)) {
+  s_->start = start;
   s_->pending.push_back({start, "", {}});
 }
 
@@ -115,6 +129,38 @@ Search::~Search() = default;
 double Search::work() const { return s_->work; }
 double Search::fraction_done() const { return s_->volume_done; }
 bool Search::done() const { return s_->stopped || s_->pending.empty(); }
+bool Search::finished() const { return s_->pending.empty(); }
+bool Search::paused() const { return s_->paused; }
+void Search::pause_when(std::function<bool()> request) { s_->pause_request = std::move(request); }
+
+void Search::report_to(std::atomic<long>* pending, std::atomic<double>* fraction_done) {
+  s_->tally_pending = pending;
+  s_->tally_done = fraction_done;
+}
+
+SearchState Search::state() const {
+  SearchState r;
+  r.pending.assign(s_->pending.begin(), s_->pending.end());
+  r.solutions = s_->solutions;
+  r.stats = s_->stats;
+  r.stats.seconds = s_->seconds;
+  r.work = s_->work;
+  r.volume_done = s_->volume_done;
+  return r;
+}
+
+void Search::set_state(SearchState state) {
+  s_->pending.assign(std::make_move_iterator(state.pending.begin()), std::make_move_iterator(state.pending.end()));
+  s_->solutions = std::move(state.solutions);
+  s_->stats = state.stats;
+  s_->seconds = state.stats.seconds;
+  s_->stats.seconds = 0;
+  s_->work = state.work;
+  s_->volume_done = state.volume_done;
+  s_->volume_pending = 0;
+  for (auto& n : s_->pending) s_->volume_pending += volume_ratio(s_->start, n.box, s_->split_dims);
+  s_->stopped = false;
+}
 
 bool Search::run(int threads, double work_limit) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -124,16 +170,26 @@ bool Search::run(int threads, double work_limit) {
   std::condition_variable cv;
   int busy = 0;
   bool paused = false;
+  st.paused = false;
 
   auto worker = [&](prune::Sequence& c, Certifier* certify) {
     Stats stats;
     std::vector<Found> found;
+    // Contractors ask between LPs: a limit or an interrupt then cuts the box being shrunk
+    // short, and it goes back to the list as it was taken, its work undone in the counts.
+    bool cut = false;
+    const std::function<bool()> stop = [&] { return cut = st.budget.stop_now(); };
+    c.stop_when(&stop);
     std::unique_lock lock(m);
     while (true) {
       cv.wait(lock, [&] { return st.stopped || paused || !st.pending.empty() || busy == 0; });
       if (st.stopped || paused || st.pending.empty()) break;
       if (work_limit > 0 && st.work >= work_limit) {
         paused = true;
+        break;
+      }
+      if (st.pause_request && st.pause_request()) {
+        paused = st.paused = true;
         break;
       }
       if (!st.budget.take_box()) {
@@ -146,13 +202,19 @@ bool Search::run(int threads, double work_limit) {
       ++busy;
       lock.unlock();
 
+      const Stats stats_before = stats;
+      const std::vector<prune::Counters> counters_before = c.counters();
+      Node taken = node;
       stats.processed++;
       const double volume = volume_ratio(st.start, node.box, st.split_dims);
       const long lps = lps_of(c);
-      const Verdict v = shrink(node.box, node.backoff, c, certify, st.split_dims, params, stats);
+      const Verdict v = shrink(node.box, node.backoff, c, certify, st.split_dims, params, cut, stats);
       const double work = 1 + kLpWork * static_cast<double>(lps_of(c) - lps);
       std::pair<Node, Node> halves;
-      if (v == Verdict::empty) {
+      if (v == Verdict::stopped) {
+        stats = stats_before;
+        c.set_counters(counters_before);
+      } else if (v == Verdict::empty) {
         stats.empty++;
       } else if (v == Verdict::solution || v == Verdict::certified) {
         stats.solution++;
@@ -168,9 +230,19 @@ bool Search::run(int threads, double work_limit) {
 
       lock.lock();
       --busy;
+      st.volume_pending -= volume;
+      if (v == Verdict::stopped) {
+        st.volume_pending += volume;
+        st.stopped = true;
+        st.pending.push_back(std::move(taken));
+        cv.notify_all();
+        break;
+      }
       st.work += work;
       if (v != Verdict::split) st.volume_done += volume;
       if (v == Verdict::split) {
+        st.volume_pending += volume_ratio(st.start, halves.first.box, st.split_dims) +
+                             volume_ratio(st.start, halves.second.box, st.split_dims);
         // Depth-first: the lower half on top. Breadth-first: lower half first in line.
         if (params.order == Order::depth_first) {
           st.pending.push_back(std::move(halves.second));
@@ -180,9 +252,12 @@ bool Search::run(int threads, double work_limit) {
           st.pending.push_back(std::move(halves.second));
         }
       }
+      if (st.tally_pending) st.tally_pending->store(static_cast<long>(st.pending.size()), std::memory_order_relaxed);
+      if (st.tally_done) st.tally_done->store(1 - st.volume_pending, std::memory_order_relaxed);
       cv.notify_all();
     }
     cv.notify_all();
+    c.stop_when(nullptr);
     st.stats += stats;
     for (auto& f : found) st.solutions.push_back(std::move(f));
   };
@@ -213,7 +288,11 @@ Result Search::result() {
   st.solutions.clear();
   r.stats = st.stats;
   r.complete = st.pending.empty();
-  for (auto& n : st.pending) r.pending.push_back(std::move(n.box));
+  r.volume_left = 0;
+  for (auto& n : st.pending) {
+    r.volume_left += volume_ratio(st.start, n.box, st.split_dims);
+    r.pending.push_back(std::move(n.box));
+  }
   st.pending.clear();
   r.stats.seconds = st.seconds;
   return r;

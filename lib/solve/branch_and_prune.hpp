@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <span>
 #include <memory>
 #include <string>
@@ -24,6 +25,9 @@ struct Params {
   Order order = Order::depth_first;
   double time_limit = 0;  // seconds; 0 = none
   long max_boxes = 0;     // processed boxes over the whole run; 0 = none
+  // When set and non-zero (a signal arrived), the run stops as if a limit were reached, with
+  // stop reason "interrupted".
+  const std::atomic<int>* interrupt = nullptr;
 };
 
 // Shared by the sub-problems of one run (and its threads): time and box-count limits.
@@ -32,18 +36,42 @@ class Budget {
   explicit Budget(const Params& p);
   // Takes one box from the budget; false when a limit is reached.
   bool take_box();
+  // Between the costly steps of one box (the LPs of a relaxation): reads the clock and the
+  // interrupt, so a limit is honoured within one LP, not one box.
+  bool stop_now();
   bool exhausted() const { return exhausted_.load(std::memory_order_relaxed); }
   const std::string& reason() const { return reason_; }
   long boxes_taken() const { return taken_.load(); }
   double elapsed() const;
 
  private:
+  bool stop(const char* why);
   std::chrono::steady_clock::time_point start_;
   double time_limit_;
   long max_boxes_;
+  const std::atomic<int>* interrupt_;
   std::atomic<long> taken_{0};
   std::atomic<bool> exhausted_{false};
   std::string reason_;
+};
+
+// A search's whole state between two boxes: what a checkpoint stores (solve/checkpoint.hpp).
+struct SearchState {
+  struct Node {  // a box and its place in the search tree: '0' = lower half, '1' = upper half
+    Box box;
+    std::string path;
+    prune::Sequence::Backoff backoff;  // inherited from the parent (see Sequence)
+  };
+  struct Found {
+    std::string path;
+    Box box;
+    bool certified = false;
+  };
+  std::vector<Node> pending;  // in list order (the back is taken first depth-first)
+  std::vector<Found> solutions;
+  Stats stats;
+  double work = 0;
+  double volume_done = 0;
 };
 
 struct Result {
@@ -52,6 +80,7 @@ struct Result {
   Stats stats;
   bool complete = true;  // false when a limit stopped the search: unexplored boxes remain
   std::vector<Box> pending;  // the unexplored boxes when incomplete
+  double volume_left = 0;    // their share of the start box's volume (split dimensions)
 };
 
 // A search that can be paused and resumed: run() processes boxes until the search is done,
@@ -70,6 +99,16 @@ class Search {
   // (empty or solutions): a rough progress measure (shrinking resolves volume too).
   double fraction_done() const;
   bool done() const;
+  bool finished() const;  // every box resolved: the search is complete
+  // Asked before each box: when it says so, run() returns (with paused() true) and the
+  // search can be saved and resumed as if it had never stopped.
+  void pause_when(std::function<bool()> request);
+  bool paused() const;
+  // Live figures for a progress line, stored after every box: pending boxes and the share of
+  // the volume outside them.
+  void report_to(std::atomic<long>* pending, std::atomic<double>* fraction_done);
+  SearchState state() const;  // between runs
+  void set_state(SearchState state);
   Result result();  // once run() returned true
 
  private:

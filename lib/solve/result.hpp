@@ -35,6 +35,10 @@ struct SubResult {
   std::vector<char> certified;
   Stats stats;
   bool complete = true;
+  // When incomplete: the boxes not yet explored (search variables) and the share of the
+  // domain's volume (split dimensions) they hold.
+  std::vector<Box> pending;
+  double volume_left = 0;
   std::vector<prune::Counters> counters;  // per contractor of the strategy
   std::vector<std::string> strategy;      // what ran ("auto" resolved; "/" between stages)
   std::string bisect;                     // the bisection rule ("auto" resolved)
@@ -51,7 +55,9 @@ struct CaseResult {
   Stats total;
   std::vector<prune::Counters> counters;  // summed over sub-problems
   bool complete = true;
-  std::string stop_reason;  // why incomplete
+  std::string stop_reason;  // why incomplete: "time limit reached", "box limit reached", "interrupted"
+  long pending_boxes = 0;   // unexplored boxes over all sub-problems
+  double volume_left = 0;   // unexplored share of the domain, averaged over sub-problems
   bool rigorous = true;     // false: float pruning (--arith float), exclusion not proved
   double seconds = 0;       // wall clock of the whole run
 };

@@ -1,5 +1,7 @@
 #include "solve/solve_case.hpp"
 
+#include "solve/checkpoint.hpp"
+
 #include <condition_variable>
 #include <cstdio>
 #include <mutex>
@@ -10,14 +12,88 @@ namespace linkbox::solve {
 
 namespace {
 
-// Prints a progress line every second until stopped; silent for runs under a second.
-class Progress {
+// Live figures of one sub-problem, for the progress line.
+struct Tally {
+  std::atomic<long> pending{0};
+  std::atomic<double> done{0};  // share of its volume outside the pending boxes
+  std::atomic<bool> finished{false};
+};
+
+// Collects each sub-problem's state as it goes and writes the checkpoint. A running search
+// deposits its state whenever a new checkpoint generation starts (it pauses between two boxes
+// for that); a sub-problem that is not running (not started, refining, finished) keeps its
+// last deposit. The file is written once every running one has deposited for the generation,
+// by whichever deposits last.
+class Checkpointer {
  public:
-  Progress(bool enabled, size_t total, const Budget& budget, const std::atomic<size_t>& done)
-      : total_(total), budget_(budget), done_(done) {
-    if (enabled) thread_ = std::thread([this] { run(); });
+  Checkpointer(const RunOptions& o, size_t n) : path_(o.checkpoint), every_(o.checkpoint_every), header_(o.checkpoint_header) {
+    if (enabled()) slots_.assign(n, {to_json_text(SubCheckpoint{}), 0, false});
   }
-  ~Progress() {
+  bool enabled() const { return !path_.empty(); }
+  int generation() const { return generation_.load(); }
+  // running: the state changes and must be deposited again for every new generation.
+  void deposit(size_t i, const SubCheckpoint& state, bool running) {
+    if (!enabled()) return;
+    std::string text = to_json_text(state);
+    std::lock_guard lock(m_);
+    slots_[i] = {std::move(text), generation_.load(), running};
+    write_when_ready();
+  }
+  void tick(double elapsed) {
+    if (!enabled() || elapsed < next_) return;
+    next_ = elapsed + every_;
+    std::lock_guard lock(m_);
+    ++generation_;
+    write_when_ready();
+  }
+  void final_write() {
+    if (!enabled()) return;
+    std::lock_guard lock(m_);
+    write(true);
+  }
+
+ private:
+  struct Slot {
+    std::string text;
+    int generation;
+    bool running;
+  };
+  void write_when_ready() {
+    if (written_ == generation_.load()) return;
+    for (auto& s : slots_)
+      if (s.running && s.generation < generation_.load()) return;
+    written_ = generation_.load();
+    write(false);
+  }
+  void write(bool last) {
+    std::vector<std::string> texts;
+    for (auto& s : slots_) texts.push_back(s.text);
+    try {
+      write_atomically(path_, checkpoint_text(header_, texts));
+    } catch (const std::runtime_error& e) {
+      if (last) throw;
+      std::fprintf(stderr, "linkbox: checkpoint not written (the run goes on): %s\n", e.what());
+    }
+  }
+  std::string path_;
+  double every_;
+  std::string header_;
+  std::atomic<int> generation_{0};
+  int written_ = 0;
+  double next_ = 0;
+  std::mutex m_;
+  std::vector<Slot> slots_;
+};
+
+// Once a second: a progress line (runs over a second, when enabled) and the checkpoint clock.
+class Ticker {
+ public:
+  Ticker(bool progress, const std::vector<Tally>& tallies, const Budget& budget, Checkpointer& checkpoints)
+      : progress_(progress), tallies_(tallies), budget_(budget), checkpoints_(checkpoints) {
+    checkpoints_.tick(0);  // the first generation starts at once; the file follows the first deposits
+    if (progress_ || checkpoints_.enabled()) thread_ = std::thread([this] { run(); });
+  }
+  ~Ticker() {
     {
       std::lock_guard lock(m_);
       stop_ = true;
@@ -29,13 +105,27 @@ class Progress {
  private:
   void run() {
     std::unique_lock lock(m_);
-    while (!cv_.wait_for(lock, std::chrono::seconds(1), [this] { return stop_; }))
-      std::fprintf(stderr, "linkbox: %zu/%zu sub-problems, %ld boxes, %.1f s\n", done_.load(), total_,
-                   budget_.boxes_taken(), budget_.elapsed());
+    while (!cv_.wait_for(lock, std::chrono::seconds(1), [this] { return stop_; })) {
+      checkpoints_.tick(budget_.elapsed());
+      if (!progress_) continue;
+      size_t finished = 0;
+      long pending = 0;
+      double done = 0;
+      for (auto& t : tallies_) {
+        const bool f = t.finished.load();
+        finished += f;
+        pending += f ? 0 : t.pending.load();
+        done += f ? 1 : t.done.load();
+      }
+      std::fprintf(stderr, "linkbox: %zu/%zu sub-problems, %ld boxes, %ld pending, %.3g%% of the volume left, %.1f s\n",
+                   finished, tallies_.size(), budget_.boxes_taken(), pending,
+                   100 * std::max(0.0, 1 - done / static_cast<double>(tallies_.size())), budget_.elapsed());
+    }
   }
-  size_t total_;
+  bool progress_;
+  const std::vector<Tally>& tallies_;
   const Budget& budget_;
-  const std::atomic<size_t>& done_;
+  Checkpointer& checkpoints_;
   std::mutex m_;
   std::condition_variable cv_;
   bool stop_ = false;
@@ -151,8 +241,17 @@ void refine(Result& r, double search_work, const formulate::SubProblem& sub, con
   r.stats.certified = std::count(r.certified.begin(), r.certified.end(), 1);
 }
 
+// What a sub-problem run needs from the whole run.
+struct Shared {
+  const RunOptions& options;
+  Budget& budget;
+  Checkpointer& checkpoints;
+  int threads;  // inside the sub-problem
+};
+
 void solve_subproblem(const formulate::Formulation& formulation, size_t i, const formulate::SubProblem& sub,
-                      const RunOptions& options, Budget& budget, int threads, SubResult& s) {
+                      const SubCheckpoint* resume, Shared& run, Tally& tally, SubResult& s) {
+  const RunOptions& options = run.options;
   StrategyOptions strategy = options.strategy;
   strategy.stall = options.params.rho;
   std::vector<std::vector<std::string>> candidates{strategy.contractors};
@@ -164,25 +263,97 @@ void solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     strategy.contractors = names;
     auto r = std::unique_ptr<Racer>(new Racer{make_strategy(strategy, sub), NaturalCertifier(formulation, i), nullptr});
     r->search = std::make_unique<Search>(sub.system.domain(), *r->strategy.sequence, sub.split_dims, options.params,
-                                         budget, &r->certifier, &bisector);
+                                         run.budget, &r->certifier, &bisector);
+    r->search->report_to(&tally.pending, &tally.done);
     racers.push_back(std::move(r));
   }
-  Racer* winner = nullptr;
-  if (racers.size() == 1) {
-    racers[0]->search->run(threads);
-    winner = racers[0].get();
+
+  RacePosition race{kFirstTurn, 0, 0, -1, -1};
+  if (resume && resume->phase == SubCheckpoint::Phase::searching) {
+    if (resume->searches.size() != racers.size())
+      throw std::invalid_argument("the checkpoint's sub-problem " + std::to_string(i) + " ran " +
+                                  std::to_string(resume->searches.size()) + " strategies, this run " +
+                                  std::to_string(racers.size()));
+    for (size_t k = 0; k < racers.size(); ++k) {
+      racers[k]->search->set_state(resume->searches[k]);
+      racers[k]->strategy.sequence->set_counters(resume->counters[k]);
+    }
+    race = resume->race;
   }
-  for (double turn = kFirstTurn; !winner; turn *= 2) {
-    size_t lead = 0;
-    if (turn > kFirstTurn)
-      for (size_t k = 1; k < racers.size(); ++k)
-        if (projected(*racers[k]->search) < projected(*racers[lead]->search)) lead = k;
-    for (size_t k = 0; k < racers.size() && !winner; ++k) {
-      // First turn: the costlier candidates get the share too (their projection needs little).
-      const double share = k == lead && (k == 0 || turn > kFirstTurn) ? 1 : kRaceShare;
-      if (racers[k]->search->run(1, racers[k]->search->work() + turn * share)) winner = racers[k].get();
+  int seen = 0;
+  auto save = [&](bool running) {
+    if (!run.checkpoints.enabled()) return;
+    SubCheckpoint c;
+    c.phase = SubCheckpoint::Phase::searching;
+    for (auto& r : racers) {
+      c.searches.push_back(r->search->state());
+      c.counters.push_back(r->strategy.sequence->counters());
+    }
+    c.race = race;
+    seen = run.checkpoints.generation();
+    run.checkpoints.deposit(i, c, running);
+  };
+  if (run.checkpoints.enabled())
+    for (auto& r : racers) r->search->pause_when([&] { return run.checkpoints.generation() > seen; });
+  save(true);
+
+  // The race (one candidate: its search). Each step runs one candidate up to its target; a
+  // pause for a checkpoint resumes the same step, so the race goes exactly as unbroken.
+  while (race.winner < 0) {
+    Search& search = *racers[race.next]->search;
+    if (racers.size() == 1) {
+      search.run(run.threads);
+    } else {
+      if (race.target < 0) {
+        if (race.next == 0 && race.turn > kFirstTurn) {
+          race.lead = 0;
+          for (size_t k = 1; k < racers.size(); ++k)
+            if (projected(*racers[k]->search) < projected(*racers[race.lead]->search)) race.lead = k;
+        }
+        // First turn: the costlier candidates get the share too (their projection needs little).
+        const size_t k = race.next;
+        const double share = k == race.lead && (k == 0 || race.turn > kFirstTurn) ? 1 : kRaceShare;
+        race.target = search.work() + race.turn * share;
+      }
+      search.run(1, race.target);
+    }
+    if (search.finished()) {
+      race.winner = static_cast<int>(race.next);
+      break;
+    }
+    if (run.budget.exhausted()) break;
+    if (search.paused()) {
+      save(true);
+      continue;
+    }
+    race.target = -1;  // reached its target: the next candidate's turn
+    if (++race.next == racers.size()) {
+      race.next = 0;
+      race.turn *= 2;
     }
   }
+
+  if (race.winner < 0) {
+    // Stopped by a limit: what the most advanced candidate has, and the state to resume from.
+    save(false);
+    size_t best = 0;
+    for (size_t k = 1; k < racers.size(); ++k)
+      if (racers[k]->search->fraction_done() > racers[best]->search->fraction_done()) best = k;
+    Racer& r = *racers[best];
+    Result part = r.search->result();
+    s.strategy = r.strategy.names;
+    s.solutions = std::move(part.solutions);
+    s.certified = std::move(part.certified);
+    for (auto& b : s.solutions) s.residuals.push_back(model::residual_bound(sub.system.equations, b));
+    s.stats = part.stats;
+    s.complete = false;
+    s.pending = std::move(part.pending);
+    s.volume_left = part.volume_left;
+    s.counters = r.strategy.sequence->counters();
+    return;
+  }
+  Racer* winner = racers[race.winner].get();
+  save(false);  // a checkpoint meanwhile resumes with the refinement
   for (auto& r : racers)
     if (r.get() != winner) s.race.push_back({strategy_name(r->strategy.names), r->search->work()});
   if (racers.size() > 1) s.race.push_back({strategy_name(winner->strategy.names), winner->search->work()});
@@ -191,63 +362,89 @@ void solve_subproblem(const formulate::Formulation& formulation, size_t i, const
   Result r = winner->search->result();
   // Only Newton tells the certifier where to look; without it a refinement cannot certify.
   const auto& names = winner->strategy.names;
-  if (r.complete && std::find(names.begin(), names.end(), "newton") != names.end()) refine(r, winner->search->work(), sub, options.params, budget, *winner->strategy.sequence, winner->certifier, bisector);
+  if (std::find(names.begin(), names.end(), "newton") != names.end())
+    refine(r, winner->search->work(), sub, options.params, run.budget, *winner->strategy.sequence, winner->certifier,
+           bisector);
   s.solutions = std::move(r.solutions);
   s.certified = std::move(r.certified);
   for (auto& b : s.solutions) s.residuals.push_back(model::residual_bound(sub.system.equations, b));
   s.stats = r.stats;
-  s.complete = r.complete;
+  s.complete = true;
   s.counters = winner->strategy.sequence->counters();
+  // A refinement cut short by a limit is done again on resuming; a whole one is final.
+  if (!run.budget.exhausted()) {
+    SubCheckpoint done;
+    done.phase = SubCheckpoint::Phase::finished;
+    done.result = s;
+    run.checkpoints.deposit(i, done, false);
+  }
 }
 
 }  // namespace
 
 CaseResult solve_case(const formulate::Formulation& formulation, const RunOptions& options) {
   const size_t n = formulation.subproblem_count();
+  if (options.resume && options.resume->subproblems.size() != n)
+    throw std::invalid_argument("the checkpoint has " + std::to_string(options.resume->subproblems.size()) +
+                                " sub-problems, this case " + std::to_string(n));
   CaseResult result;
   result.subproblems.resize(n);
   Budget budget(options.params);
+  Checkpointer checkpoints(options, n);
+  std::vector<Tally> tallies(n);
   // Threads go across sub-problems when there are enough of them, else inside each one.
   const int across = std::max(1, std::min<int>(options.threads, static_cast<int>(n)));
-  const int inside = n >= static_cast<size_t>(options.threads) ? 1 : options.threads;
-  std::atomic<size_t> next{0}, done{0};
+  Shared shared{options, budget, checkpoints, n >= static_cast<size_t>(options.threads) ? 1 : options.threads};
+  std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
 
   auto worker = [&] {
     for (size_t i; (i = next.fetch_add(1)) < n;) {
       try {
-        formulate::SubProblem sub = formulation.subproblem(i);
+        const SubCheckpoint* resume = options.resume ? &options.resume->subproblems[i] : nullptr;
         SubResult& s = result.subproblems[i];
-        s.index = i;
-        s.label = sub.label;
-        s.equations = static_cast<int>(sub.system.equations.size());
-        s.variables = static_cast<int>(sub.system.variables.size());
-        if (budget.exhausted()) {
-          s.complete = false;
+        if (resume && resume->phase == SubCheckpoint::Phase::finished) {
+          s = resume->result;
+          checkpoints.deposit(i, *resume, false);
         } else {
-          solve_subproblem(formulation, i, sub, options, budget, inside, s);
+          formulate::SubProblem sub = formulation.subproblem(i);
+          s.index = i;
+          s.label = sub.label;
+          s.equations = static_cast<int>(sub.system.equations.size());
+          s.variables = static_cast<int>(sub.system.variables.size());
+          if (budget.exhausted()) {
+            s.complete = false;
+            s.volume_left = 1;
+            s.pending = {sub.system.domain()};
+            if (resume) checkpoints.deposit(i, *resume, false);
+          } else {
+            solve_subproblem(formulation, i, sub, resume, shared, tallies[i], s);
+          }
         }
       } catch (...) {
         std::lock_guard lock(error_mutex);
         if (!error) error = std::current_exception();
         next.store(n);
       }
-      done.fetch_add(1);
+      tallies[i].finished.store(true);
     }
   };
   {
-    Progress progress(options.progress, n, budget, done);
+    Ticker ticker(options.progress, tallies, budget, checkpoints);
     std::vector<std::thread> pool;
     for (int t = 1; t < across; ++t) pool.emplace_back(worker);
     worker();
     for (auto& t : pool) t.join();
   }
   if (error) std::rethrow_exception(error);
+  checkpoints.final_write();
 
   for (auto& s : result.subproblems) {
     result.total += s.stats;
     result.complete = result.complete && s.complete;
+    result.pending_boxes += static_cast<long>(s.pending.size());
+    result.volume_left += s.volume_left / static_cast<double>(n);
     // By name: sub-problems may have run different strategies ("auto" chooses per sub-problem).
     size_t k = 0;
     for (auto& name : s.strategy) {

@@ -8,7 +8,12 @@
 #include "solve/result.hpp"
 #include "solve/strategy.hpp"
 
+#include <map>
+#include <string>
+
 namespace linkbox::solve {
+
+struct Checkpoint;
 
 struct RunOptions {
   Params params;
@@ -16,6 +21,15 @@ struct RunOptions {
   Bisect bisect = Bisect::automatic;
   int threads = 1;
   bool progress = true;  // progress lines on stderr for runs over a second
+  // Checkpoints (solve/checkpoint.hpp): written to `checkpoint` (when not empty) every
+  // `checkpoint_every` seconds and when the run ends. `checkpoint_header` is a JSON object's
+  // text saying what the run is (its case and settings), compared when resuming.
+  std::string checkpoint;
+  double checkpoint_every = 60;
+  std::string checkpoint_header = "{}";
+  const Checkpoint* resume = nullptr;  // go on from this state (its settings must be these)
+  // Where each setting came from, for the report: name -> "case file" or "flag" (absent: default).
+  std::map<std::string, std::string> setting_source;
 };
 
 CaseResult solve_case(const formulate::Formulation& formulation, const RunOptions& options);

@@ -7,6 +7,7 @@
 #include "prune/newton_contractor.hpp"
 #include "prune/trapezoid.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace linkbox::solve {
@@ -32,7 +33,7 @@ std::unique_ptr<Contractor> make_contractor(const std::string& name, const Strat
     return std::make_unique<Lifted>(std::move(lph), sub.system.variables.size(), std::move(inner));
   }
   if (name == "newton") return std::make_unique<IntervalNewton>(pruned.equations, pruned.variables.size(), options.arith);
-  if (name == "hc4") return std::make_unique<Hc4>(pruned.equations, options.arith);
+  if (name == "hc4") return std::make_unique<Hc4>(pruned.equations, options.arith, pruned.inequalities);
   throw std::invalid_argument("unknown pruning strategy '" + name + "' (known: auto, trapezoid, lp, hc4, newton)");
 }
 
@@ -85,6 +86,12 @@ std::vector<std::string> parse_strategy_list(const std::string& text) {
     }
   }
   flush();
+  // Checked here so a misspelt name fails before any work, wherever it was written.
+  for (auto& name : r)
+    if (name != "/" && name != "auto" && name != "trapezoid" && name != "lp" && name != "hc4" && name != "newton")
+      throw std::invalid_argument("unknown pruning strategy '" + name + "' (known: auto, trapezoid, lp, hc4, newton)");
+  if (std::count(r.begin(), r.end(), "/") == static_cast<long>(r.size()))
+    throw std::invalid_argument("no pruning strategy given");
   return r;
 }
 

@@ -34,7 +34,8 @@ std::vector<std::vector<std::string>> auto_candidates(const formulate::SubProble
 // the sub-problem (e.g. trapezoid on a system that is not multi-affine).
 Strategy make_strategy(const StrategyOptions& options, const formulate::SubProblem& sub);
 
-std::vector<std::string> parse_strategy_list(const std::string& text);  // "hc4,newton/lp" -> {"hc4","newton","/","lp"}
+// "hc4,newton/lp" -> {"hc4","newton","/","lp"}; std::invalid_argument for an unknown name.
+std::vector<std::string> parse_strategy_list(const std::string& text);
 std::string strategy_name(const std::vector<std::string>& contractors);  // the reverse
 
 }  // namespace linkbox::solve

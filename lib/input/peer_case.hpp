@@ -1,0 +1,36 @@
+#pragma once
+// Models written for the peers (IbexSolve's Minibex .bch, CuikSuite's .cuik), read as a
+// polynomial system. Next to the system the readers keep its text in linkbox's expression
+// grammar, which the converter (to_toml.hpp) writes out: TOML cases stay rigorous only if
+// decimals are written as decimals, and an interval coefficient cannot be written back.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "model/polynomial.hpp"
+
+namespace linkbox::input {
+
+struct PeerCase {
+  std::string format;  // "Minibex" or "CuikSuite"
+  model::System system;
+  // Parallel to system.variables: the domain's ends as constant expressions.
+  struct Bounds {
+    std::string lower, upper;
+  };
+  std::vector<Bounds> bounds;
+  // Parallel to system.equations: each equation as "expression" (= 0).
+  std::vector<std::string> equations;
+  // Said once in the converted file's header (how vector elements were named, ...).
+  std::vector<std::string> notes;
+};
+
+using PeerReader = PeerCase (*)(std::string_view text, const std::string& file);
+
+// The reader for `file`'s extension (.bch: Minibex, .cuik: CuikSuite, any case), or nullptr.
+PeerReader peer_reader_for(std::string_view file);
+
+// The case name of a peer's file: its file name without folders and extension.
+std::string peer_case_name(std::string_view file);
+
+}  // namespace linkbox::input

@@ -1,0 +1,119 @@
+#pragma once
+// Functions of variables lifted to polynomial equations in new unknowns, so that the rest of
+// linkbox (propagation, Newton, LP, certification) sees a polynomial system, and the record
+// that maps its roots back to the case's own variables one to one.
+//
+//  - A variable t used only inside sin, cos and tan is an angle. Each argument must be
+//    affine, a*t + b (several angles may be summed), and the coefficients of one angle must
+//    be integer multiples of one unit w > 0: u = w*t is then the angle that is modelled, and
+//    sin/cos of k*u + b expand into polynomials in cos(u), sin(u) (angle-sum and multiple-
+//    angle formulas). What the case uses decides the unknowns:
+//      circle    c = cos(u), s = sin(u) with c^2 + s^2 = 1 and, when u's domain is less than
+//                a full turn and not within one quadrant, the half-plane c cos m + s sin m >=
+//                cos h (m its centre, h its half-width), which is exactly the arc of the
+//                domain (the box of (c, s) alone holds more of the circle);
+//      cos only  c alone, when s never occurs and u's domain lies within one [k pi, (k+1) pi]
+//                (cos is one to one there);
+//      sin only  s alone, when c never occurs and u's domain lies within [k pi - pi/2,
+//                k pi + pi/2];
+//      tan only  tau = tan(a*t + b) alone, when that is the angle's only use.
+//    A domain wider than a full turn (u's width provably > 2 pi) is rejected: the map back
+//    from (c, s) would not be one to one. A full turn (e.g. [-pi, pi]) is the whole circle:
+//    a root on the seam is one root, reported near the domain's upper end.
+//    A variable used both inside sin/cos/tan and outside them is rejected: t and cos(t) are
+//    not related by any polynomial equation.
+//  - tan(A) of an angle expression that is not "tan only": an unknown tau with tau cos(A) =
+//    sin(A); A's range over the domain must avoid the poles (tau's domain is tan of it).
+//  - sqrt(A) (and A^(k + 1/2)) of any expression: an unknown r with r^2 = A, r >= 0 (the
+//    domain of r is [0, sqrt(max A)]).
+// Every coefficient and domain is enclosed rigorously (MPFI for sin, cos, tan, atan2).
+#include "model/polynomial.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace linkbox::model {
+
+// A function applied to an expression with variables, as the parser meets it. In a
+// RawSystem, variable index n + k (n = declared variables) stands for application k.
+struct Application {
+  enum class Function { sin, cos, tan, sqrt };
+  Function function;
+  Polynomial argument;  // over the declared variables and the applications before this one
+  std::string text;     // as written, e.g. "sin(2*t + pi/4)": names and messages
+};
+const char* to_string(Application::Function f);
+
+// A system as typed, before lifting: equations and inequalities over the declared
+// variables and the applications.
+struct RawSystem {
+  std::vector<Variable> variables;
+  std::vector<Polynomial> equations;
+  std::vector<std::string> equation_names;
+  std::vector<Inequality> inequalities;
+  std::vector<Application> applications;
+};
+
+// What cannot be lifted. `variable` (declared index), `application`, `equation` or
+// `inequality` locates the cause for the caller's message (-1: not that one).
+struct LiftError : std::invalid_argument {
+  int variable = -1, application = -1, equation = -1, inequality = -1;
+  LiftError(const std::string& message, int variable, int application, int equation = -1, int inequality = -1)
+      : std::invalid_argument(message),
+        variable(variable),
+        application(application),
+        equation(equation),
+        inequality(inequality) {}
+};
+
+struct Lifting {
+  enum class Chart { circle, cos_only, sin_only, tan_only };
+  // A declared variable t used as an angle: u = unit * t is modelled.
+  struct Angle {
+    int variable = -1;
+    Interval unit{1.0};  // > 0
+    Interval domain;     // of u: unit * (domain of t)
+    Chart chart = Chart::circle;
+    int c = -1, s = -1;  // lifted indices of cos(u), sin(u) (-1: not modelled)
+    int tan = -1;        // tan only: lifted index of tan(u * sign + offset)
+    Interval offset{0.0};  // tan only: tan(sign * u + offset) is modelled
+    int sign = 1;          // tan only
+    long branch = 0;       // cos/sin/tan only: which monotone branch u's domain lies in
+    double centre = 0;     // circle: u is reported in [centre - pi, centre + pi] (see to_declared)
+    Interval cos_centre{1.0}, sin_centre{0.0};  // enclosures of cos and sin of `centre`
+    bool full_turn = false;
+  };
+  // Where each lifted variable comes from.
+  struct Source {
+    enum class Kind { declared, cos, sin, tan_angle, application } kind;
+    int index;  // declared variable, angle, angle, application
+  };
+
+  std::vector<Variable> declared;         // the case's own variables: what is reported
+  std::vector<Application> applications;  // as parsed
+  std::vector<Angle> angles;
+  std::vector<Source> sources;            // one per lifted variable
+  std::vector<std::string> notes;         // what was lifted, one line each
+
+  // Rigorous enclosure of the declared variables over a box of lifted ones. Every point of
+  // the box that satisfies the lifted system maps into it (angles by atan2, acos, asin,
+  // atan on their branch).
+  Box to_declared(const Box& lifted) const;
+  // Rigorous enclosure of the lifted variables over a box of declared ones (cos, sin, tan
+  // and sqrt of the arguments). Throws std::domain_error when the box meets a pole of a tan
+  // or makes a sqrt's argument negative throughout.
+  Box to_lifted(const Box& declared) const;
+};
+
+// Lifts `raw`. Without applications the result is `raw` as a System with no lifting record.
+// Throws LiftError for what cannot be lifted (see the top of this file).
+System lift(const RawSystem& raw);
+
+// `p` with variable i replaced by images[i] (every variable of p needs an image).
+Polynomial substitute(const Polynomial& p, const std::vector<Polynomial>& images);
+
+// Whether two polynomials have the same terms with the same coefficient bounds.
+bool same(const Polynomial& a, const Polynomial& b);
+
+}  // namespace linkbox::model

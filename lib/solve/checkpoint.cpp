@@ -1,0 +1,250 @@
+#include "solve/checkpoint.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace linkbox::solve {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr int kFormat = 1;
+
+// Doubles round-trip exactly through nlohmann's shortest representation; JSON has no
+// infinities, so those travel as strings.
+json num(double x) {
+  if (std::isfinite(x)) return x;
+  return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
+}
+double num(const json& j) {
+  if (j.is_number()) return j.get<double>();
+  const std::string s = j.get<std::string>();
+  if (s == "inf") return INFINITY;
+  if (s == "-inf") return -INFINITY;
+  if (s == "nan") return NAN;
+  throw std::invalid_argument("not a number: " + s);
+}
+
+json box_out(const Box& b) {
+  json j = json::array();
+  for (auto& x : b) j.push_back({num(x.lower()), num(x.upper())});
+  return j;
+}
+Box box_in(const json& j) {
+  Box b;
+  for (auto& x : j) {
+    const double lo = num(x.at(0)), hi = num(x.at(1));
+    if (!(lo <= hi)) throw std::invalid_argument("an empty interval");
+    b.emplace_back(lo, hi);
+  }
+  return b;
+}
+
+json stats_out(const Stats& s) {
+  return {s.processed, s.empty, s.solution, s.split, s.shrinks, s.certified, s.certify_calls, num(s.seconds)};
+}
+Stats stats_in(const json& j) {
+  Stats s;
+  s.processed = j.at(0);
+  s.empty = j.at(1);
+  s.solution = j.at(2);
+  s.split = j.at(3);
+  s.shrinks = j.at(4);
+  s.certified = j.at(5);
+  s.certify_calls = j.at(6);
+  s.seconds = num(j.at(7));
+  return s;
+}
+
+json counters_out(const std::vector<prune::Counters>& cs) {
+  json j = json::array();
+  for (auto& c : cs) j.push_back({c.calls, c.emptied, num(c.seconds), num(c.volume_removed), c.lps_solved, c.lp_iterations});
+  return j;
+}
+std::vector<prune::Counters> counters_in(const json& j) {
+  std::vector<prune::Counters> cs;
+  for (auto& x : j) {
+    prune::Counters c;
+    c.calls = x.at(0);
+    c.emptied = x.at(1);
+    c.seconds = num(x.at(2));
+    c.volume_removed = num(x.at(3));
+    c.lps_solved = x.at(4);
+    c.lp_iterations = x.at(5);
+    cs.push_back(c);
+  }
+  return cs;
+}
+
+json search_out(const SearchState& s) {
+  json pending = json::array(), found = json::array();
+  for (auto& n : s.pending) pending.push_back({n.path, n.backoff.level, n.backoff.skip, box_out(n.box)});
+  for (auto& f : s.solutions) found.push_back({f.path, f.certified, box_out(f.box)});
+  return {{"pending", pending}, {"solutions", found}, {"stats", stats_out(s.stats)},
+          {"work", num(s.work)}, {"volume_done", num(s.volume_done)}};
+}
+SearchState search_in(const json& j) {
+  SearchState s;
+  for (auto& n : j.at("pending"))
+    s.pending.push_back({box_in(n.at(3)), n.at(0).get<std::string>(), {n.at(1).get<int>(), n.at(2).get<int>()}});
+  for (auto& f : j.at("solutions")) s.solutions.push_back({f.at(0).get<std::string>(), box_in(f.at(2)), f.at(1).get<bool>()});
+  s.stats = stats_in(j.at("stats"));
+  s.work = num(j.at("work"));
+  s.volume_done = num(j.at("volume_done"));
+  return s;
+}
+
+json boxes_out(const std::vector<Box>& boxes) {
+  json j = json::array();
+  for (auto& b : boxes) j.push_back(box_out(b));
+  return j;
+}
+std::vector<Box> boxes_in(const json& j) {
+  std::vector<Box> r;
+  for (auto& b : j) r.push_back(box_in(b));
+  return r;
+}
+
+json result_out(const SubResult& r) {
+  json residuals = json::array(), race = json::array();
+  for (double x : r.residuals) residuals.push_back(num(x));
+  for (auto& [name, work] : r.race) race.push_back({name, num(work)});
+  return {{"index", r.index},
+          {"label", r.label},
+          {"equations", r.equations},
+          {"variables", r.variables},
+          {"solutions", boxes_out(r.solutions)},
+          {"residuals", residuals},
+          {"certified", std::vector<int>(r.certified.begin(), r.certified.end())},
+          {"stats", stats_out(r.stats)},
+          {"complete", r.complete},
+          {"pending", boxes_out(r.pending)},
+          {"volume_left", num(r.volume_left)},
+          {"counters", counters_out(r.counters)},
+          {"strategy", r.strategy},
+          {"bisect", r.bisect},
+          {"race", race}};
+}
+SubResult result_in(const json& j) {
+  SubResult r;
+  r.index = j.at("index");
+  r.label = j.at("label");
+  r.equations = j.at("equations");
+  r.variables = j.at("variables");
+  r.solutions = boxes_in(j.at("solutions"));
+  for (auto& x : j.at("residuals")) r.residuals.push_back(num(x));
+  for (int c : j.at("certified").get<std::vector<int>>()) r.certified.push_back(static_cast<char>(c != 0));
+  r.stats = stats_in(j.at("stats"));
+  r.complete = j.at("complete");
+  r.pending = boxes_in(j.at("pending"));
+  r.volume_left = num(j.at("volume_left"));
+  r.counters = counters_in(j.at("counters"));
+  r.strategy = j.at("strategy").get<std::vector<std::string>>();
+  r.bisect = j.at("bisect");
+  for (auto& x : j.at("race")) r.race.push_back({x.at(0).get<std::string>(), num(x.at(1))});
+  if (r.solutions.size() != r.residuals.size() || r.solutions.size() != r.certified.size())
+    throw std::invalid_argument("inconsistent solution lists");
+  return r;
+}
+
+const char* phase_name(SubCheckpoint::Phase p) {
+  switch (p) {
+    case SubCheckpoint::Phase::not_started: return "not started";
+    case SubCheckpoint::Phase::searching: return "searching";
+    case SubCheckpoint::Phase::finished: return "finished";
+  }
+  return "?";
+}
+
+SubCheckpoint sub_in(const json& j) {
+  SubCheckpoint s;
+  const std::string phase = j.at("phase");
+  if (phase == phase_name(SubCheckpoint::Phase::not_started)) return s;
+  if (phase == phase_name(SubCheckpoint::Phase::finished)) {
+    s.phase = SubCheckpoint::Phase::finished;
+    s.result = result_in(j.at("result"));
+    return s;
+  }
+  if (phase != phase_name(SubCheckpoint::Phase::searching)) throw std::invalid_argument("unknown phase '" + phase + "'");
+  s.phase = SubCheckpoint::Phase::searching;
+  for (auto& x : j.at("searches")) s.searches.push_back(search_in(x));
+  for (auto& x : j.at("counters")) s.counters.push_back(counters_in(x));
+  const json& r = j.at("race");
+  s.race = {num(r.at("turn")), r.at("next").get<size_t>(), r.at("lead").get<size_t>(), num(r.at("target")),
+            r.at("winner").get<int>()};
+  if (s.searches.empty() || s.counters.size() != s.searches.size() || s.race.next >= s.searches.size() ||
+      s.race.lead >= s.searches.size() || s.race.winner >= static_cast<int>(s.searches.size()))
+    throw std::invalid_argument("inconsistent search state");
+  return s;
+}
+
+}  // namespace
+
+std::string to_json_text(const SubCheckpoint& s) {
+  json j = {{"phase", phase_name(s.phase)}};
+  if (s.phase == SubCheckpoint::Phase::finished) j["result"] = result_out(s.result);
+  if (s.phase == SubCheckpoint::Phase::searching) {
+    json searches = json::array(), counters = json::array();
+    for (auto& x : s.searches) searches.push_back(search_out(x));
+    for (auto& c : s.counters) counters.push_back(counters_out(c));
+    j["searches"] = searches;
+    j["counters"] = counters;
+    j["race"] = {{"turn", num(s.race.turn)}, {"next", s.race.next}, {"lead", s.race.lead},
+                 {"target", num(s.race.target)}, {"winner", s.race.winner}};
+  }
+  return j.dump();
+}
+
+std::string checkpoint_text(const std::string& header, const std::vector<std::string>& subproblems) {
+  // Assembled as text: the pieces are already JSON, and re-parsing them would double the cost.
+  std::string t = "{\"linkbox_checkpoint\":" + std::to_string(kFormat) + ",\"header\":" + header + ",\"subproblems\":[";
+  for (size_t i = 0; i < subproblems.size(); ++i) t += (i ? ",\n" : "\n") + subproblems[i];
+  return t + "]}\n";
+}
+
+void write_atomically(const std::string& path, const std::string& text) {
+  const std::string temp = path + ".tmp";
+  std::FILE* f = std::fopen(temp.c_str(), "wb");
+  if (!f) throw std::runtime_error("cannot write " + temp + ": " + std::strerror(errno));
+  // Flushed to the disk before the rename: after a power cut the old or the new file is whole.
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0 && fsync(fileno(f)) == 0;
+  const int err = errno;
+  std::fclose(f);
+  if (!ok) {
+    std::remove(temp.c_str());
+    throw std::runtime_error("cannot write " + temp + ": " + std::strerror(err));
+  }
+  if (std::rename(temp.c_str(), path.c_str()) != 0)
+    throw std::runtime_error("cannot rename " + temp + " to " + path + ": " + std::strerror(errno));
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument("cannot read checkpoint " + path + ": " + std::strerror(errno));
+  try {
+    const json j = json::parse(in);
+    if (!j.is_object() || !j.contains("linkbox_checkpoint"))
+      throw std::invalid_argument("not a linkbox checkpoint");
+    if (j.at("linkbox_checkpoint") != kFormat)
+      throw std::invalid_argument("checkpoint format " + j.at("linkbox_checkpoint").dump() + ", this linkbox reads " +
+                                  std::to_string(kFormat));
+    Checkpoint c;
+    c.header = j.at("header").dump();
+    for (auto& s : j.at("subproblems")) c.subproblems.push_back(sub_in(s));
+    return c;
+  } catch (const json::exception& e) {
+    throw std::invalid_argument("checkpoint " + path + " is damaged: " + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("checkpoint " + path + ": " + e.what());
+  }
+}
+
+}  // namespace linkbox::solve

@@ -1,0 +1,298 @@
+// Runs a user can trust: the case's [solve] settings, checkpoints and resuming, interrupts,
+// output problems found before the work, and limits honoured inside an LP contraction.
+#include "formulate/load.hpp"
+#include "formulate/to_lph.hpp"
+#include "prune/lp_relaxation.hpp"
+#include "solve/branch_and_prune.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+using namespace linkbox;
+
+namespace {
+
+std::string src(const std::string& p) { return std::string(LINKBOX_SOURCE_DIR) + "/" + p; }
+
+std::string tmp(const std::string& name) {
+  static const std::filesystem::path dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("linkbox-run-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return (dir / name).string();
+}
+
+struct Ran {
+  int code;
+  std::string out;  // stdout and stderr
+};
+
+Ran run(const std::string& args) {
+  const std::string log = tmp("log.txt");
+  const std::string cmd = std::string(LINKBOX_CLI) + " " + args + " > " + log + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+nlohmann::json read(const std::string& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+void write(const std::string& file, const std::string& text) { std::ofstream(file) << text; }
+
+// The result with what may differ between an unbroken and a resumed run taken out: timings,
+// and where the settings came from.
+nlohmann::json comparable(nlohmann::json j) {
+  std::function<void(nlohmann::json&)> strip = [&](nlohmann::json& x) {
+    if (x.is_object()) {
+      for (const char* key : {"seconds", "cpu_seconds"}) x.erase(key);
+      for (auto& [k, v] : x.items()) strip(v);
+    } else if (x.is_array()) {
+      for (auto& v : x) strip(v);
+    }
+  };
+  j.erase("parameters");
+  strip(j);
+  return j;
+}
+
+const char* kCircle = R"(kind = "polynomial"
+name = "circle-line"
+variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] } ]
+equations = [ "x^2 + y^2 - 1", "x - y" ]
+)";
+
+}  // namespace
+
+TEST_CASE("a case's [solve] table gives its recommended settings", "[run_control]") {
+  const auto c = formulate::load_case_text(std::string(kCircle) + R"(
+[solve]
+sigma = 0.5
+rho = 0.9
+prune = "hc4,newton"
+bisect = "widest"
+time_limit = 30
+)",
+                                           "settings.toml");
+  REQUIRE(c.solve.sigma);
+  CHECK(*c.solve.sigma == Approx(0.5));
+  CHECK(*c.solve.rho == Approx(0.9));
+  CHECK(*c.solve.prune == "hc4,newton");
+  CHECK(*c.solve.bisect == "widest");
+  CHECK(*c.solve.time_limit == Approx(30));
+  CHECK(c.solve.line == 6);
+  CHECK_FALSE(formulate::load_case_text(kCircle, "plain.toml").solve.sigma);
+
+  struct Bad {
+    const char* table;
+    int line;
+    const char* message;
+  };
+  for (const Bad& bad : {Bad{"[solve]\nsigmaa = 1\n", 7, "unknown key 'sigmaa'"},
+                         Bad{"[solve]\nsigma = -1\n", 7, "solve.sigma must be greater than 0"},
+                         Bad{"[solve]\nrho = 2\n", 7, "solve.rho must be greater than 0 and at most 1"},
+                         Bad{"[solve]\nprune = 3\n", 7, "solve.prune must be a string"},
+                         Bad{"solve = 3\n", 6, "the [solve] table must be a table"}}) {
+    INFO(bad.table);
+    try {
+      formulate::load_case_text(std::string(kCircle) + "\n" + bad.table, "bad.toml");
+      FAIL("accepted");
+    } catch (const input::InputError& e) {
+      INFO(e.what());
+      CHECK(e.line == bad.line);
+      CHECK(e.message.find(bad.message) != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("flags override the case's settings, and the summary says where each came from", "[run_control][cli]") {
+  const std::string path = tmp("settings.toml"), out = tmp("settings.json");
+  write(path, std::string(kCircle) + "\n[solve]\nsigma = 0.25\nprune = \"hc4\"\n");
+  Ran r = run("solve " + path + " --quiet --json " + out);
+  REQUIRE(r.code == 0);
+  auto j = read(out);
+  CHECK(j["parameters"]["sigma"] == 0.25);
+  CHECK(j["parameters"]["prune"] == "hc4");
+  CHECK(j["parameters"]["sources"]["sigma"] == "case file");
+  CHECK_FALSE(j["parameters"]["sources"].contains("rho"));
+  CHECK(r.out.find("sigma (case file)") != std::string::npos);
+
+  REQUIRE(run("solve " + path + " --quiet --sigma 0.125 --json " + out).code == 0);
+  j = read(out);
+  CHECK(j["parameters"]["sigma"] == 0.125);
+  CHECK(j["parameters"]["sources"]["sigma"] == "flag");
+  CHECK(j["parameters"]["prune"] == "hc4");
+
+  // A setting the solver does not know is bad input at the table's line.
+  write(path, std::string(kCircle) + "\n[solve]\nprune = \"hc5\"\n");
+  r = run("solve " + path + " --quiet");
+  CHECK(r.code == 2);
+  CHECK(r.out.find(path + ":6: [solve] prune: unknown pruning strategy 'hc5'") != std::string::npos);
+}
+
+TEST_CASE("output problems are bad input, reported before the search", "[run_control][cli]") {
+  Ran r = run("solve " + src("cases/spherical/wrist.toml") + " --quiet --json /nonexistent-dir/x.json");
+  CHECK(r.code == 2);
+  CHECK(r.out.find("--json /nonexistent-dir/x.json: cannot write there") != std::string::npos);
+  CHECK(r.out.find("verification") == std::string::npos);  // nothing was solved
+  r = run("solve " + src("cases/spherical/wrist.toml") + " --quiet --checkpoint " +
+          std::filesystem::temp_directory_path().string());
+  CHECK(r.code == 2);
+  CHECK(r.out.find("is a folder") != std::string::npos);
+  r = run("solve " + src("cases/spherical/wrist.toml") + " --sigma -1");
+  CHECK(r.code == 2);
+  CHECK(r.out.find("expected a number > 0, got '-1'") != std::string::npos);
+  CHECK(r.out.find("e+308") == std::string::npos);
+  r = run("--version");
+  CHECK(r.code == 0);
+  CHECK(r.out.rfind("linkbox ", 0) == 0);
+}
+
+TEST_CASE("a run stopped by a limit and resumed from its checkpoint ends with the boxes of an unbroken run",
+          "[run_control][cli]") {
+  struct Case {
+    const char* path;
+    const char* stop;
+    const char* resume;
+  };
+  // A raced linkage (both candidates mid-way), and a spherical case of many sub-problems on
+  // two threads (some finished, some under way, some not started).
+  for (const Case& c : {Case{"cases/linkages/6r-rigid.toml", "--max-boxes 700", ""},
+                        Case{"cases/spherical/four-loop.toml", "--max-boxes 3000 --threads 2", "--threads 2"}}) {
+    INFO(c.path);
+    const std::string whole = tmp("whole.json"), part = tmp("part.json"), resumed = tmp("resumed.json"),
+                      cp = tmp("run.checkpoint");
+    std::filesystem::remove(cp);
+    REQUIRE(run("solve " + src(c.path) + " --quiet --json " + whole).code == 0);
+    REQUIRE(run("solve " + src(c.path) + " --quiet " + c.stop + " --checkpoint " + cp + " --json " + part).code == 0);
+    const auto p = read(part);
+    REQUIRE(p["complete"] == false);
+    CHECK(p["pending_boxes"].get<long>() > 0);
+    CHECK(p["volume_left"].get<double>() > 0);
+    CHECK(p["volume_left"].get<double>() <= 1);
+    REQUIRE(run("resume " + cp + " --quiet " + c.resume + " --json " + resumed).code == 0);
+    const auto w = read(whole), r = read(resumed);
+    CHECK(r["complete"] == true);
+    CHECK(r["parameters"]["sources"]["sigma"] == "checkpoint");
+    CHECK(comparable(r) == comparable(w));
+  }
+}
+
+TEST_CASE("a checkpoint of another case, of other settings or damaged is refused", "[run_control][cli]") {
+  const std::string cp = tmp("refuse.checkpoint");
+  std::filesystem::remove(cp);
+  REQUIRE(run("solve " + src("cases/spherical/wrist.toml") + " --quiet --max-boxes 5 --checkpoint " + cp).code == 0);
+  Ran r = run("resume " + cp + " --quiet --sigma 0.001");
+  CHECK(r.code == 2);
+  CHECK(r.out.find("the checkpoint was made with sigma 0.0001, not 0.001") != std::string::npos);
+  r = run("resume " + cp + " --quiet --case " + src("cases/spherical/agile-eye.toml"));
+  CHECK(r.code == 2);
+  CHECK(r.out.find("was made for another case") != std::string::npos);
+  write(cp + ".bad", "{\"linkbox_checkpoint\": 1, \"header\": {}, \"subproblems\": [{\"phase\": \"dreaming\"}]}");
+  r = run("resume " + cp + ".bad --quiet --case " + src("cases/spherical/wrist.toml"));
+  CHECK(r.code == 2);
+  write(cp + ".bad", "{");
+  r = run("resume " + cp + ".bad --quiet");
+  CHECK(r.code == 2);
+  CHECK(r.out.find("is damaged") != std::string::npos);
+  CHECK(run("resume " + cp + " --quiet --sigma 0.0001").code == 0);  // the same settings are fine
+}
+
+TEST_CASE("an interrupt keeps what was proven: partial JSON, pending boxes, exit 128 + signal", "[run_control][cli]") {
+  const std::string out = tmp("interrupted.json"), cp = tmp("interrupted.checkpoint");
+  std::filesystem::remove(cp);
+  std::filesystem::remove(out);
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    // eco9 takes seconds; the checkpoint file appears when the search has started.
+    execl(LINKBOX_CLI, LINKBOX_CLI, "solve", src("cases/benchmarks/eco9.toml").c_str(), "--quiet", "--json",
+          out.c_str(), "--checkpoint", cp.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  for (int i = 0; i < 6000 && !std::filesystem::exists(cp); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  REQUIRE(std::filesystem::exists(cp));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 128 + SIGINT);
+  const auto j = read(out);
+  CHECK(j["complete"] == false);
+  CHECK(j["stop_reason"] == "interrupted");
+  CHECK(j["pending_boxes"].get<long>() > 0);
+  CHECK(j["subproblem_stats"][0]["pending"].size() == j["pending_boxes"].get<size_t>());
+  CHECK(j["headline"].get<std::string>().find("search incomplete (interrupted)") != std::string::npos);
+}
+
+TEST_CASE("the LP contractor stops between LPs when asked, keeping only proved bounds", "[run_control]") {
+  const auto c = formulate::load_case_text(kCircle, "circle.toml");
+  const model::System s = c.formulation->subproblem(0).system;
+  const model::LphSystem lph = formulate::to_lph(s);
+  prune::LpRelaxation lp(lph);
+  int asked = 0;
+  const std::function<bool()> stop = [&] { return ++asked > 1; };  // the first LP pair only
+  lp.stop_when(&stop);
+  Box box = lph.domain();
+  REQUIRE(lp.contract(box) != prune::Outcome::empty);
+  CHECK(lp.lps_solved() <= 2);
+  CHECK(asked == 2);
+  // Both roots (+-1/sqrt 2, +-1/sqrt 2) are still inside.
+  for (double r : {-0.7071067811865476, 0.7071067811865476}) {
+    CHECK(boost::numeric::in(r, box[0]));
+    CHECK(boost::numeric::in(r, box[1]));
+  }
+  lp.stop_when(nullptr);
+  Box full = lph.domain();
+  REQUIRE(lp.contract(full) != prune::Outcome::empty);
+  CHECK(lp.lps_solved() > 2);
+}
+
+TEST_CASE("a budget stops on an interrupt and reads the clock between LPs", "[run_control]") {
+  std::atomic<int> interrupt{0};
+  solve::Params p;
+  p.interrupt = &interrupt;
+  solve::Budget budget(p);
+  CHECK(budget.take_box());
+  CHECK_FALSE(budget.stop_now());
+  interrupt = 1;
+  CHECK(budget.stop_now());
+  CHECK(budget.exhausted());
+  CHECK(budget.reason() == "interrupted");
+  CHECK_FALSE(budget.take_box());
+}
+
+TEST_CASE("a root whose Jacobian is singular is named so, with counts that cannot read as variables", "[run_control][cli]") {
+  // x^2 + y^2 = 0 and x^2 = y^3: the one real root is the origin, where every term has degree
+  // >= 2, so the Jacobian vanishes there.
+  const std::string path = tmp("singular.toml"), out = tmp("singular.json");
+  write(path, R"(kind = "polynomial"
+name = "singular-origin"
+variables = [ { name = "x", domain = [-1, 1] }, { name = "y", domain = [-1, 1] } ]
+equations = [ "x^2 + y^2", "x^2 - y^3" ]
+)");
+  REQUIRE(run("solve " + path + " --quiet --json " + out).code == 0);
+  const auto j = read(out);
+  CHECK(j["verification"]["exact"] == false);
+  CHECK(j["certified_roots"] == 0);
+  const std::string headline = j["headline"];
+  INFO(headline);
+  CHECK(headline.find("(singular Jacobian in the cluster: 1 cluster)") != std::string::npos);
+  CHECK(headline.find(" x1") == std::string::npos);
+}
