@@ -164,6 +164,17 @@ TEST_CASE("output problems are bad input, reported before the search", "[run_con
   CHECK(r.out.rfind("linkbox ", 0) == 0);
 }
 
+TEST_CASE("each subcommand's --help shows examples of itself", "[run_control][cli]") {
+  for (const std::string sub : {"solve", "resume", "check", "convert"}) {
+    INFO(sub);
+    const Ran r = run(sub + " --help");
+    CHECK(r.code == 0);
+    const size_t examples = r.out.find("Examples:");
+    REQUIRE(examples != std::string::npos);
+    CHECK(r.out.find("linkbox " + sub + " ", examples) != std::string::npos);
+  }
+}
+
 TEST_CASE("a run stopped by a limit and resumed from its checkpoint ends with the boxes of an unbroken run",
           "[run_control][cli]") {
   struct Case {

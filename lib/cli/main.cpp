@@ -323,6 +323,25 @@ int main(int argc, char** argv) {
   std::string convert_file;
   auto* convert_app = app.add_subcommand("convert", "write a peer's model (Minibex .bch, CuikSuite .cuik) as a TOML case");
   convert_app->add_option("model", convert_file, "the .bch or .cuik file")->required();
+  solve_app->footer(R"(Examples:
+  linkbox solve cases/linkages/6r-rigid.toml
+  linkbox solve cases/linkages/cyclohexane.toml --prune lp --json out.json
+  linkbox solve cases/benchmarks/eco9.bch --time-limit 60 --checkpoint eco9.ckpt
+  linkbox solve case.toml --arith float        (unverified, for comparison)
+Settings come from the flags, else the case's [solve] table, else the defaults; the summary's
+`settings` line says which. Exit 0 (also when a limit stopped the search: the JSON says
+complete: false), 2 bad input, 1 internal error, 128+N on signal N.)");
+  resume_app->footer(R"(Examples:
+  linkbox resume eco9.ckpt
+  linkbox resume eco9.ckpt --time-limit 600 --json eco9.json
+A checkpoint of another case, or with other search settings, is refused (exit 2).)");
+  check_app->footer(R"(Examples:
+  linkbox solve cases/spherical/wrist.toml --json wrist.json && linkbox check wrist.json
+  linkbox check result.json --case my-copy-of-the-case.toml)");
+  convert_app->footer(R"(Examples:
+  linkbox convert cases/benchmarks/eco9.bch > eco9.toml
+  linkbox convert cases/benchmarks/cyclohexan3d.cuik > cyclohexan3d.toml
+An unsupported construct is an error naming file:line (exit 2), never a change of meaning.)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -209,7 +209,7 @@ bool Search::run(int threads, double work_limit) {
       const double volume = volume_ratio(st.start, node.box, st.split_dims);
       const long lps = lps_of(c);
       const Verdict v = shrink(node.box, node.backoff, c, certify, st.split_dims, params, cut, stats);
-      const double work = 1 + kLpWork * static_cast<double>(lps_of(c) - lps);
+      const double work = 1 + kLpWork * static_cast<double>(lps_of(c) - lps) + (v == Verdict::solution ? kSolutionWork : 0);
       std::pair<Node, Node> halves;
       if (v == Verdict::stopped) {
         stats = stats_before;

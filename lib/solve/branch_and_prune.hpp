@@ -119,6 +119,11 @@ class Search {
 // One LP costs about as much as this many boxes of propagation and Newton (0.3-0.4 ms per LP
 // against 20-40 us per box on the rigid 6R, Eco9 and planted systems).
 constexpr double kLpWork = 15;
+// A solution box that Newton has not certified is work still to come: clustering, Newton on
+// its cluster, refinement. On a curve (cyclohexane at sigma 0.1) that costs ~4 ms per box,
+// about 100 boxes of propagation; a strategy that leaves many such boxes is not cheap,
+// however fast it reached them.
+constexpr double kSolutionWork = 100;
 
 // With threads > 1 a Search processes boxes in parallel with clones of `contractor` (their
 // counters are added back into it). Every box is processed the same way whatever the thread

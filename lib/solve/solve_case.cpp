@@ -117,9 +117,14 @@ class Ticker {
         pending += f ? 0 : t.pending.load();
         done += f ? 1 : t.done.load();
       }
-      std::fprintf(stderr, "linkbox: %zu/%zu sub-problems, %ld boxes, %ld pending, %.3g%% of the volume left, %.1f s\n",
-                   finished, tallies_.size(), budget_.boxes_taken(), pending,
-                   100 * std::max(0.0, 1 - done / static_cast<double>(tallies_.size())), budget_.elapsed());
+      // Pending boxes near roots or on a curve hold a sliver of the volume: below what the
+      // tally (1 - pending volume) resolves, it reads "<0.001%", never 0 while boxes remain.
+      const double left = 100 * std::max(0.0, 1 - done / static_cast<double>(tallies_.size()));
+      char volume[32];
+      if (pending > 0 && left < 1e-3) std::snprintf(volume, sizeof volume, "<0.001%%");
+      else std::snprintf(volume, sizeof volume, "%.3g%%", left);
+      std::fprintf(stderr, "linkbox: %zu/%zu sub-problems, %ld boxes, %ld pending, %s of the volume left, %.1f s\n",
+                   finished, tallies_.size(), budget_.boxes_taken(), pending, volume, budget_.elapsed());
     }
   }
   bool progress_;
