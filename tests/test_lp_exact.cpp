@@ -28,6 +28,7 @@ TEST_CASE("exact basis check on recorded LPs: diagnostics", "[.][lp_diag]") {
   for (const RecordedLp& rec : lps) {
     if (only >= 0 && (&rec - lps.data()) != only) continue;
     ClpCore clp;
+    clp.set_tolerances(ExactLp::kPrimalTolerance, ExactLp::kDualTolerance);  // as ExactLp runs it
     ExactSimplex exact;
     clp.load(rec.program);
     exact.load(rec.program);
@@ -42,7 +43,7 @@ TEST_CASE("exact basis check on recorded LPs: diagnostics", "[.][lp_diag]") {
       const auto finish = clp.solve(s.col, s.sense);
       auto t1 = std::chrono::steady_clock::now();
       clp.basis(cols, rows);
-      const auto r = exact.solve(s.col, s.sense, cols, rows, std::getenv("LINKBOX_LP_DIAG_PIVOTS") ? std::atoi(std::getenv("LINKBOX_LP_DIAG_PIVOTS")) : 8);
+      const auto r = exact.solve(s.col, s.sense, cols, rows, std::getenv("LINKBOX_LP_DIAG_PIVOTS") ? std::atoi(std::getenv("LINKBOX_LP_DIAG_PIVOTS")) : ExactLp::kMaxPivots);
       auto t2 = std::chrono::steady_clock::now();
       clp_s += std::chrono::duration<double>(t1 - t0).count();
       exact_s += std::chrono::duration<double>(t2 - t1).count();
@@ -56,7 +57,7 @@ TEST_CASE("exact basis check on recorded LPs: diagnostics", "[.][lp_diag]") {
       if (r.kind == ExactSimplex::Result::optimal) {
         ++optimal_after;
         static const long every = std::getenv("LINKBOX_LP_DIAG_CGAL_EVERY") ? std::atol(std::getenv("LINKBOX_LP_DIAG_CGAL_EVERY")) : 0;
-        if (every && optimal_after % every == 0) {
+        if ((every && optimal_after % every == 0) || (std::getenv("LINKBOX_LP_DIAG_RELAXED") && r.relaxations > 1)) {
           LinearProgram lp = rec.program;
           lp.col_lo = s.col_lo, lp.col_hi = s.col_hi;
           const ExactOptimum e = cgal_minimum(lp, s.col, s.sense);
@@ -72,7 +73,11 @@ TEST_CASE("exact basis check on recorded LPs: diagnostics", "[.][lp_diag]") {
         LinearProgram lp = rec.program;
         lp.col_lo = s.col_lo, lp.col_hi = s.col_hi;
         const ExactOptimum e = cgal_minimum(lp, s.col, s.sense);
-        std::cout << "exact infeasible; cgal status " << int(e.status) << " value " << e.down << " at lp " << (&rec - lps.data())
+        std::vector<double> y = r.farkas;
+        bool proved = exact.proves_infeasible(y);
+        for (double& v : y) v = -v;
+        proved = proved || exact.proves_infeasible(y);
+        std::cout << "exact infeasible (certificate " << (proved ? "checked" : "refused") << "); cgal status " << int(e.status) << " value " << e.down << " at lp " << (&rec - lps.data())
                   << " solve " << (&s - rec.solves.data()) << "\n";
       }
       else ++failed, ++reasons[r.failure];

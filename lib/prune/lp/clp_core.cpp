@@ -103,7 +103,18 @@ void ClpCore::load(const LinearProgram& program) {
   // thirds of the (feasible, as the exact LP showed) relaxations on bicyclohexane primal
   // infeasible, which cost all their pruning.
   model_->scaling(0);
+  if (primal_tolerance_ > 0) model_->setPrimalTolerance(primal_tolerance_);
+  if (dual_tolerance_ > 0) model_->setDualTolerance(dual_tolerance_);
   objective_col_ = -1;
+}
+
+void ClpCore::set_tolerances(double primal, double dual) {
+  primal_tolerance_ = primal;
+  dual_tolerance_ = dual;
+  if (model_) {
+    model_->setPrimalTolerance(primal);
+    model_->setDualTolerance(dual);
+  }
 }
 
 void ClpCore::set_column_bounds(int col, double lo, double hi) {

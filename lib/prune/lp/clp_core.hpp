@@ -29,6 +29,10 @@ class ClpCore {
 
   void load(const LinearProgram& program);
   void set_column_bounds(int col, double lo, double hi);
+  // CLP's primal and dual feasibility tolerances (on the centred LP), kept across loads;
+  // CLP's defaults (1e-7) until set. The exact backend tightens them: a basis CLP calls
+  // optimal then needs fewer exact pivots.
+  void set_tolerances(double primal, double dual);
 
   enum class Finish {
     optimal,     // CLP says optimal within its tolerances
@@ -61,6 +65,7 @@ class ClpCore {
   std::unique_ptr<ClpSimplex> model_;
   int objective_col_ = -1;  // the single non-zero of CLP's current objective
   long iterations_ = 0;
+  double primal_tolerance_ = 0, dual_tolerance_ = 0;  // 0: CLP's defaults
 };
 
 }  // namespace linkbox::prune::lp

@@ -5,7 +5,8 @@
 // feasible, both checked exactly, is an optimality certificate: the optimum is then known
 // exactly, whatever produced the basis. When the checks fail, a few exact pivots repair the
 // basis (dual simplex while it is dual feasible, primal simplex while primal feasible); a
-// dual-simplex row with no entering candidate proves the LP infeasible exactly.
+// dual-simplex row with no entering candidate says the LP is infeasible, and its multipliers
+// are returned for the caller to check as a Farkas certificate (ExactLp trusts only that).
 //
 // Variables are the columns x_j and the row activities r_i = a_i . x, each with its bounds.
 // With k basic columns the basis fixes k nonbasic rows, and the basic columns solve the
@@ -37,7 +38,8 @@ class ExactSimplex {
   struct Result {
     enum Kind {
       optimal,     // down/up: the exact optimum of sense * x[col] rounded down and up
-      infeasible,  // proved by an exact dual-simplex row
+      infeasible,  // an exact dual-simplex row found no entering variable (the caller checks
+                   // `farkas` before trusting it)
       failed,      // no certificate within the pivot budget (or a singular basis)
     } kind = failed;
     double down = 0, up = 0;
@@ -48,6 +50,10 @@ class ExactSimplex {
     // Why it failed: 0 none, 1 not a vertex (free nonbasic or wrong basis size), 2 singular
     // basis, 3 primal and dual infeasible at once, 4 pivot budget spent, 5 unbounded ray.
     int failure = 0;
+    int relaxations = 0;  // times violated bounds were moved out for primal pivots
+    // infeasible: row multipliers (rounded to doubles) of the dual simplex row that found
+    // it, a candidate Farkas certificate (either sign) for proves_infeasible.
+    std::vector<double> farkas;
   };
   // min sense * x[col] from the basis (cols, rows) (ClpCore::basis), with at most
   // `max_pivots` exact pivots.
