@@ -365,7 +365,7 @@ def spherical_system(rng, face):
         lines = [
             f"# Random spherical 3R loop closed at the pose phi = ({', '.join(exprs)}) by the",
             "# inverse fixed rotations (tests/planted_stats.py); two roots in all (closed form).",
-            'kind = "spherical"', f'name = "planted-spherical"', f"joints = {json.dumps(names)}", "",
+            'kind = "spherical"', 'name = "planted-spherical"', f"joints = {json.dumps(names)}", "",
             "[[loops]]", 'name = "loop"', "factors = [",
         ]
         lines += [f'  {{ joint = "{j}", axis = {a} }},' for j, a in zip(names, axes)]
@@ -601,7 +601,7 @@ def report(paths, outdir):
     by = {(k, m): [r for r in rows if r["kind"] == k and r["mode"] == m] for k in kinds + ["all"] for m in ("verified", "float")}
     for m in ("verified", "float"):
         by[("all", m)] = [r for r in rows if r["mode"] == m]
-    lines = ["| kind | systems | planted roots | lost, verified | lost, float | certified (verified) | "
+    lines = ["| kind | systems (verified) | planted roots | lost, verified | lost, float | certified (verified) | "
              "time verified: median / p90 / max [s] | time float: median / p90 / max [s] | "
              "\"exactly N\" claims (count known) | wrong \"exactly N\" | incomplete verified / float |",
              "|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -626,6 +626,7 @@ def report(paths, outdir):
         lines.append(
             f"| {k} | {len(v)} | {planted_n} | {lost_v}" + (f" (+{lost_vi} in incomplete runs)" if lost_vi else "")
             + f" | {lost_f} of {sum(r['planted'] for r in f)} ({(100 * lost_f / max(1, sum(r['planted'] for r in f))):.1f}%)"
+            + f" in {len(f)} systems"
             + f" | {cert} ({100 * cert / planted_n:.1f}%) | {quantile(tv, .5):.3f} / {quantile(tv, .9):.3f} / {max(tv):.2f}"
             + f" | {ft} | {claims} ({known}) | {wrong}" + (f" (float: {wrong_f})" if wrong_f else "")
             + f" | {inc_v} / {inc_f} |")
@@ -684,7 +685,8 @@ def report(paths, outdir):
         ax.set_title(f"{m} mode: distribution of solve times")
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel("fraction of systems solved within")
-    axes[1].legend(fontsize=8, loc="lower right")
+    for ax in axes:
+        ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
     fig.savefig(os.path.join(outdir, "time.png"), dpi=110)
     plt.close(fig)

@@ -436,3 +436,24 @@ TEST_CASE("check --case rejects a result against a case whose parameter differs"
     }
   }
 }
+
+// Planted system 7704 (tests/data/planted/close-7704.toml): two close pairs, 4 roots. A result
+// of an earlier build said "exactly 3": a cluster holding two roots was certified around one,
+// marked the duplicate of another cluster, and its second root never counted. check must
+// reject that result, and today's solve must not state a wrong count.
+TEST_CASE("an exact count needs every certified cluster alone in its hull (duplicates too)", "[check]") {
+  const std::string c = src("tests/data/planted/close-7704.toml");
+  const auto f = formulate::load_case(c).formulation;
+  std::ifstream in(src("tests/data/planted/close-7704.result.json"));
+  const json forged = json::parse(in);
+  REQUIRE(forged["headline"].get<std::string>().rfind("exactly 3", 0) == 0);
+  CHECK_FALSE(failures(forged, *f).empty());
+
+  const std::string out = tmp("close-7704.json");
+  REQUIRE(run_cli("solve " + c + " --quiet --json " + out) == 0);
+  std::ifstream fresh_in(out);
+  const json fresh = json::parse(fresh_in);
+  const std::string headline = fresh["headline"];
+  if (headline.rfind("exactly", 0) == 0) CHECK(headline.rfind("exactly 4 roots", 0) == 0);
+  CHECK(failures(fresh, *f).empty());
+}

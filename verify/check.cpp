@@ -356,6 +356,19 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
       out.failures.push_back("cluster " + std::to_string(i) +
                              ": marked the duplicate of another cluster, but one root for both is not proved");
   }
+  // "exactly N" needs every cluster settled: each certified one (duplicates too) proved alone
+  // in its hull, no curve or unresolved cluster, the search complete.
+  if (j.value("headline", std::string()).rfind("exactly", 0) == 0) {
+    if (!j.value("complete", false)) out.failures.push_back("the headline states an exact count of an incomplete search");
+    for (size_t i = 0; i < clusters.size(); ++i) {
+      const std::string status = clusters[i].at("status");
+      const bool settled = status == "empty" || status == "infeasible" ||
+                           (status == "certified" && clusters[i].at("certificate").value("unique_in_hull", false));
+      if (!settled)
+        out.failures.push_back("cluster " + std::to_string(i) + ": the headline states an exact count, but this cluster is " +
+                               (status == "certified" ? "not proved to hold only its root" : status));
+    }
+  }
   if (certified != j.at("certified_roots").get<int>())
     out.failures.push_back("certified_roots says " + std::to_string(j.at("certified_roots").get<int>()) + " but " +
                            std::to_string(certified) + " distinct certified clusters are listed");

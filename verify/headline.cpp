@@ -18,10 +18,12 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
   bool all_unique = true;
   std::map<std::string, int> reasons;
   for (auto& c : report.clusters) {
-    if (c.status == ClusterStatus::certified && c.duplicate_of < 0) {
-      report.certified_roots++;
+    if (c.status == ClusterStatus::certified) {
+      // A duplicate is proved to hold the same root as another cluster, not to hold only that
+      // one: its hull may hold a second root (two close pairs), so it must be unique too.
       all_unique = all_unique && c.certificate.unique_in_hull;
       if (!c.certificate.unique_in_hull) reasons[without_detail(c.reason)]++;
+      if (c.duplicate_of < 0) report.certified_roots++;
     } else if (c.status == ClusterStatus::curve) {
       report.curves++;
     } else if (c.status == ClusterStatus::empty) {
