@@ -23,6 +23,7 @@
 //                          root, the count lowered
 #include "formulate/load.hpp"
 #include "verify/check.hpp"
+#include "cli_run.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -50,22 +51,9 @@ namespace {
 constexpr int kVariants = 25;  // random variants of each mutation kind, per case
 constexpr int kCurveVariants = 6;  // for the gimbal lock, whose check re-runs ~1200 crossings
 
-std::string src(const std::string& p) { return std::string(LINKBOX_SOURCE_DIR) + "/" + p; }
-
-std::string tmp(const std::string& name) {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("linkbox-mutations-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return (dir / name).string();
-}
-
-int run_cli(const std::string& args) {
-  const std::string cmd = std::string(LINKBOX_CLI) + " " + args + " > /dev/null 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+using test::src;
+std::string tmp(const std::string& name) { return test::scratch(name); }
+int run_cli(const std::string& args) { return test::run_cli(args).code; }
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path);

@@ -12,6 +12,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "cli_run.hpp"
 #include "input/case_file.hpp"
 #include "input/peer_case.hpp"
 #include "input/to_toml.hpp"
@@ -357,31 +358,12 @@ TEST_CASE("peer formats: deep nesting is an error, not a crash", "[peer]") {
 
 namespace {
 
-// Runs the CLI; returns the exit code and what it printed.
 std::pair<int, std::string> run_cli(const std::string& args) {
-  const std::string out =
-      (std::filesystem::temp_directory_path() / ("linkbox-peer-" + std::to_string(::getpid()) + ".out")).string();
-  const std::string cmd = std::string(LINKBOX_CLI) + " " + args + " > " + out + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(out);
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  std::filesystem::remove(out);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+  const test::Ran r = test::run_cli(args);
+  return {r.code, r.out};
 }
-
-std::string temp(const std::string& name) {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("linkbox-peer-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return (dir / name).string();
-}
-
-nlohmann::json read_json(const std::string& file) {
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
+std::string temp(const std::string& name) { return test::scratch(name); }
+using test::read_json;
 
 std::vector<nlohmann::json> certified_boxes(const nlohmann::json& j) {
   std::vector<nlohmann::json> boxes;

@@ -4,6 +4,7 @@
 #include "formulate/to_lph.hpp"
 #include "prune/lp_relaxation.hpp"
 #include "solve/branch_and_prune.hpp"
+#include "cli_run.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -23,36 +24,12 @@ using namespace linkbox;
 
 namespace {
 
-std::string src(const std::string& p) { return std::string(LINKBOX_SOURCE_DIR) + "/" + p; }
-
-std::string tmp(const std::string& name) {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("linkbox-run-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return (dir / name).string();
-}
-
-struct Ran {
-  int code;
-  std::string out;  // stdout and stderr
-};
-
-Ran run(const std::string& args) {
-  const std::string log = tmp("log.txt");
-  const std::string cmd = std::string(LINKBOX_CLI) + " " + args + " > " + log + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
-
-nlohmann::json read(const std::string& file) {
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
+using test::Ran;
+using test::read_json;
+using test::src;
+Ran run(const std::string& args) { return test::run_cli(args); }
+std::string tmp(const std::string& name) { return test::scratch(name); }
+nlohmann::json read(const std::string& file) { return read_json(file); }
 
 void write(const std::string& file, const std::string& text) { std::ofstream(file) << text; }
 
