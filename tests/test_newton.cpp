@@ -267,3 +267,34 @@ TEST_CASE("certify_curve_crossing on the unit circle", "[newton][curve]") {
   REQUIRE(certified(s));
   CHECK(recheck(space, s));
 }
+
+TEST_CASE("certify_root: a root with a coordinate exactly 0, from a hull at the rounding limit", "[newton]") {
+  // x1^2 + x2 - 1/4 = 0, x1 - x2^2 + 1/16 = 0: root (0, 1/4), regular (det J = -1). Search
+  // contraction leaves x1 in [-1.4e-17, 0]; inflation around a zero coordinate must still
+  // reach a width the Newton image fits in (tests/data/planted/zero-coordinate-inflation.toml).
+  auto method = GENERATE(Method::krawczyk, Method::hansen_sengupta);
+  NewtonOptions o;
+  o.method = method;
+  const std::vector<Polynomial> f{var(0) * var(0) + var(1) - cst(0.25), var(0) - var(1) * var(1) + cst(0.0625)};
+  for (const Box& hull : {Box{Interval(-1.4e-17, 0), Interval(0.25)}, Box{Interval(0), Interval(0.25)},
+                          Box{Interval(-1e-300, 1e-300), Interval(0.25, 0.25)}}) {
+    const Certificate c = certify_root(f, hull, Box{Interval(-1, 1), Interval(-1, 1)}, o);
+    INFO(to_string(c.reason));
+    REQUIRE(certified(c));
+    CHECK(linkbox::contains(c.box[0], 0.0));
+    CHECK(linkbox::contains(c.box[1], 0.25));
+    CHECK(c.box[0].upper() - c.box[0].lower() < 1e-10);
+  }
+}
+
+TEST_CASE("interval Eigen: an interval matrix times an interval vector encloses every product", "[newton][eigen]") {
+  IMatrix a(2, 2);
+  a << Interval(1, 2), Interval(-1), Interval(0.1), Interval(-3, -2);
+  IVector x(2);
+  x << Interval(-1, 1), Interval(1) / Interval(3);
+  const IVector ax = multiply(a, x);
+  for (double a00 : {1.0, 2.0})
+    for (double x0 : {-1.0, 1.0}) CHECK(linkbox::contains(ax(0), a00 * x0 - 1.0 / 3));
+  for (double a11 : {-3.0, -2.0}) CHECK(linkbox::contains(ax(1), 0.1 * -1 + a11 / 3));
+  CHECK(ax(1).lower() <= -0.1 - 1.0);
+}

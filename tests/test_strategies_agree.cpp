@@ -33,10 +33,11 @@ TEST_CASE("strategies agree on the certified roots of the bundled cases", "[stra
       {"cases/spherical/wrist.toml", {{"auto"}, {"trapezoid"}, {"trapezoid", "newton"}, {"hc4", "newton"}, {"lp"}, {"hc4", "lp"}}},
       {"cases/spherical/agile-eye.toml", {{"auto"}, {"trapezoid"}, {"trapezoid", "newton"}, {"trapezoid", "lp"}}},
       {"cases/polynomial/circle-line.toml", {{"auto"}, {"hc4"}, {"newton"}, {"lp"}, {"hc4", "lp"}}},
-      {"cases/polynomial/planted-cubic.toml", {{"auto"}, {"hc4"}, {"newton"}, {"hc4", "lp"}}},
-      {"cases/benchmarks/kin1.toml", {{"auto"}, {"hc4", "newton"}, {"hc4", "newton", "/", "lp"}}},
-      {"cases/benchmarks/cyclohexan3d.toml", {{"auto"}, {"hc4", "newton"}, {"hc4", "lp"}}},
-      {"cases/linkages/6r-rigid.toml", {{"auto"}, {"hc4", "/", "newton"}}},
+      {"cases/polynomial/planted-cubic.toml", {{"auto"}, {"hc4"}, {"newton"}, {"hc4", "lp"}, {"acid", "newton"}}},
+      {"cases/benchmarks/kin1.toml", {{"auto"}, {"hc4", "newton"}, {"hc4", "newton", "/", "lp"}, {"hc4", "acid", "newton"}}},
+      {"cases/benchmarks/cyclohexan3d.toml", {{"auto"}, {"hc4", "newton"}, {"hc4", "lp"}, {"hc4", "acid", "newton"}}},
+      {"cases/benchmarks/caprasse.toml", {{"auto"}, {"hc4", "acid", "newton"}}},
+      {"cases/linkages/6r-rigid.toml", {{"auto"}, {"hc4", "/", "newton"}, {"hc4", "acid", "newton"}}},
   };
   for (auto& [file, strategies] : runs) {
     formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + file);

@@ -6,6 +6,7 @@
 #include <Eigen/SVD>
 
 #include <algorithm>
+#include <map>
 
 namespace linkbox::verify {
 
@@ -34,18 +35,18 @@ bool rank_deficient_near(const std::vector<model::Polynomial>& f, const Box& x) 
 // Equations to leave out so that `keep` remain, chosen one at a time at the point p: each
 // time the one whose removal leaves rows that best span `keep` dimensions (for a square
 // system rank-deficient along a curve, keep = n - 1: the dependent equation).
-std::vector<int> dependent_equations(const std::vector<model::Polynomial>& f, const Eigen::VectorXd& p,
-                                     size_t keep) {
-  const Eigen::MatrixXd j = newton::FloatSystem(f, p.size()).jacobian(p);
+std::vector<int> dependent_equations(const newton::FloatSystem& f, const Eigen::VectorXd& p, size_t keep) {
+  const Eigen::MatrixXd j = f.jacobian(p);
+  const size_t rows_total = static_cast<size_t>(j.rows());
   std::vector<int> dropped;
-  while (f.size() - dropped.size() > keep) {
+  while (rows_total - dropped.size() > keep) {
     int best = -1;
     double best_sv = -1;
     for (int r = 0; r < j.rows(); ++r) {
       if (std::find(dropped.begin(), dropped.end(), r) != dropped.end()) continue;
       auto without = dropped;
       without.push_back(r);
-      const auto rows = rows_except(f.size(), without);
+      const auto rows = rows_except(rows_total, without);
       Eigen::MatrixXd rest(rows.size(), j.cols());
       for (size_t k = 0; k < rows.size(); ++k) rest.row(k) = j.row(rows[k]);
       const double sv = singular_value(rest, keep);
@@ -61,6 +62,10 @@ std::vector<int> dependent_equations(const std::vector<model::Polynomial>& f, co
 // fixed at the middle of the box.
 void certify_curve(const formulate::Formulation& f, const std::vector<Box>& members, const std::vector<std::uint64_t>& charts, ClusterReport& c,
                    const newton::NewtonOptions& options) {
+  // Members share a few charts and dropped sets: their systems are built once (building one
+  // differentiates every equation, which cost more than the Newton tests themselves).
+  std::map<std::uint64_t, newton::FloatSystem> floats;
+  std::map<std::pair<std::uint64_t, std::vector<int>>, std::shared_ptr<const model::CompiledSystem>> compiled;
   for (size_t k = 0; k < c.boxes.size(); ++k) {
     CurveCrossing x;
     x.box = k;
@@ -75,8 +80,14 @@ void certify_curve(const formulate::Formulation& f, const std::vector<Box>& memb
     }
     // n - 1 equations make a curve; the others are left out.
     const size_t n = sys.unknowns.size();
-    if (sys.equations.size() >= n) x.dropped_equations = dependent_equations(sys.equations, newton::centre(natural), n - 1);
-    const auto eqs = pick(sys.equations, rows_except(sys.equations.size(), x.dropped_equations));
+    if (sys.equations.size() >= n) {
+      auto f = floats.try_emplace(x.chart, sys.equations, n).first;
+      x.dropped_equations = dependent_equations(f->second, newton::centre(natural), n - 1);
+    }
+    auto& eqs = compiled[{x.chart, x.dropped_equations}];
+    if (!eqs)
+      eqs = std::make_shared<const model::CompiledSystem>(
+          pick(sys.equations, rows_except(sys.equations.size(), x.dropped_equations)), n);
     // Fix the variable that varies most across the box (the curve's direction there).
     x.certificate = newton::certify_curve_crossing(eqs, natural, widest_dimension(natural), options);
     // A crossing of the subsystem is a point of the solution set only where the equations

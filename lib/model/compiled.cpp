@@ -34,7 +34,7 @@ CompiledSystem::Compiled CompiledSystem::add(const Polynomial& p, Arith arith) {
   Compiled c{static_cast<int>(terms_.size()), 0};
   for (auto& [powers, coef] : p.terms()) {
     const Interval k = coefficient_for(arith, coef);
-    Term t{FastInterval(k.lower(), k.upper()), static_cast<int>(factors_.size()), 0};
+    Term t{FastInterval(k.lower(), k.upper()), median(k), static_cast<int>(factors_.size()), 0};
     for (auto [v, e] : powers) factors_.emplace_back(v, e);
     t.end = static_cast<int>(factors_.size());
     terms_.push_back(t);
@@ -101,6 +101,38 @@ void CompiledSystem::values_at(const double* y, FastInterval* f) const {
     for (int e = 2; e <= max_degree_[v]; ++e) p[e - 1] = p[e - 2] * p[0];  // a point: products are as tight
   }
   for (size_t i = 0; i < values_.size(); ++i) f[i] = sum(values_[i], powers);
+}
+
+const double* CompiledSystem::float_powers(const double* y) const {
+  thread_local std::vector<double> powers;
+  if (static_cast<int>(powers.size()) < power_count_) powers.resize(power_count_);
+  for (size_t v = 0; v < max_degree_.size(); ++v) {
+    double* p = powers.data() + power_offset_[v];
+    p[0] = y[v];
+    for (int e = 2; e <= max_degree_[v]; ++e) p[e - 1] = p[e - 2] * y[v];
+  }
+  return powers.data();
+}
+
+double CompiledSystem::float_sum(const Compiled& c, const double* powers) const {
+  double s = 0;
+  for (int t = c.begin; t < c.end; ++t) {
+    const Term& term = terms_[t];
+    double m = term.mid;
+    for (int k = term.begin; k < term.end; ++k) m *= powers[power_offset_[factors_[k].first] + factors_[k].second - 1];
+    s += m;
+  }
+  return s;
+}
+
+void CompiledSystem::values_float(const double* y, double* f) const {
+  const double* powers = float_powers(y);
+  for (size_t i = 0; i < values_.size(); ++i) f[i] = float_sum(values_[i], powers);
+}
+
+void CompiledSystem::jacobian_float(const double* y, double* j) const {
+  const double* powers = float_powers(y);
+  for (size_t e = 0; e < partials_.size(); ++e) j[e] = float_sum(partials_[e], powers);
 }
 
 }  // namespace linkbox::model

@@ -34,10 +34,15 @@ class CompiledSystem {
   void evaluate(const Box& x, FastInterval* f, FastInterval* j) const;
   // Values at the point y (each coordinate a double), as degenerate intervals.
   void values_at(const double* y, FastInterval* f) const;
+  // In plain double with midpoint coefficients, in whatever rounding mode is set: for a
+  // float Newton's guesses, never for a proof (several times cheaper than intervals).
+  void values_float(const double* y, double* f) const;
+  void jacobian_float(const double* y, double* j) const;  // nonzeros() entries
 
  private:
   struct Term {
     FastInterval coef;
+    double mid;  // the coefficient's midpoint, for the float evaluation
     int begin, end;  // factors_[begin, end): (variable, exponent >= 1)
   };
   struct Compiled {
@@ -46,6 +51,8 @@ class CompiledSystem {
   Compiled add(const Polynomial& p, Arith arith);
   FastInterval* fill_powers(const Box& x) const;  // into this thread's scratch table
   FastInterval sum(const Compiled& c, const FastInterval* powers) const;
+  const double* float_powers(const double* y) const;
+  double float_sum(const Compiled& c, const double* powers) const;
 
   std::vector<Term> terms_;
   std::vector<std::pair<int, int>> factors_;

@@ -86,6 +86,7 @@ struct FloatRoot {
 
 // Plain Newton in double. Only finds the start for inflation; proves nothing.
 FloatRoot float_newton(const SquareSystem& s, Eigen::VectorXd x, const NewtonOptions& o) {
+  double last_step = kInf;
   for (int k = 0; k < o.newton_steps; ++k) {
     Eigen::VectorXd fx = s.values_at(x);
     Eigen::MatrixXd j = s.jacobian_at(x);
@@ -96,14 +97,22 @@ FloatRoot float_newton(const SquareSystem& s, Eigen::VectorXd x, const NewtonOpt
     Eigen::VectorXd dx = lu.solve(fx);
     if (!dx.allFinite()) return {x, false, false};
     x -= dx;
-    if (dx.lpNorm<Eigen::Infinity>() <= 4 * kEps * x.lpNorm<Eigen::Infinity>()) break;
+    const double step = dx.lpNorm<Eigen::Infinity>(), size = x.lpNorm<Eigen::Infinity>();
+    if (step <= 4 * kEps * size) break;
+    // At the rounding noise of F the steps stop shrinking quadratically: further ones only
+    // move x around the root (a third of the time of verifying a curve went there).
+    if (step <= 1e-9 * (1 + size) && step > 0.25 * last_step) break;
+    last_step = step;
   }
   return {x, x.allFinite(), false};
 }
 
 // Rump's epsilon-inflation: X grows from the float root until its Newton image falls inside.
 // The absolute terms let a box around an exactly representable root (F(x) = 0) reach a
-// width the test can resolve, and zero components leave zero.
+// width the test can resolve, and zero components leave zero. They scale with the root's
+// largest coordinate: F(y)'s rounding error, which the image's width must exceed, is relative
+// to the terms of F, not to a zero coordinate (2^-60 of the scale left a coordinate exactly 0
+// ten times narrower than the image of the same box, and inflation never caught up).
 std::optional<std::pair<Box, NewtonStep>> inflate(const SquareSystem& s, const Eigen::VectorXd& root,
                                                   const Eigen::MatrixXd& c, const NewtonOptions& o,
                                                   Box& last, NewtonStep& last_step) {
@@ -111,7 +120,7 @@ std::optional<std::pair<Box, NewtonStep>> inflate(const SquareSystem& s, const E
   Box x = point_box(root);
   for (int k = 0; k < o.inflation_steps; ++k) {
     for (size_t i = 0; i < x.size(); ++i) {
-      double eta = std::ldexp(std::fabs(root(i)), -48) + std::ldexp(scale, -60) +
+      double eta = std::ldexp(std::fabs(root(i)), -48) + std::ldexp(scale, -50) +
                    std::numeric_limits<double>::min();
       double r = o.inflation * (x[i].upper() - x[i].lower()) + eta;
       x[i] = x[i] + Interval(-r, r);
@@ -297,12 +306,15 @@ std::vector<int> all_but(size_t n, int skip) {
 
 // Parameters ordered by the reciprocal condition number (SVD) of the remaining square
 // Jacobian at the box centre, best first.
-std::vector<int> parameters_by_conditioning(const std::vector<model::Polynomial>& f, const Box& box) {
+std::vector<int> parameters_by_conditioning(const model::CompiledSystem& f, const Box& box) {
   const int n = static_cast<int>(box.size());
-  Box centre = point_box(centre_of(box));
-  Eigen::MatrixXd j(n - 1, n);
-  for (int i = 0; i < n - 1; ++i)
-    for (int k = 0; k < n; ++k) j(i, k) = median(f[i].derivative(k).eval(centre));
+  std::vector<FastInterval> d(f.nonzeros());
+  {
+    RoundingGuard guard;
+    f.jacobian(point_box(centre_of(box)), d.data());
+  }
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(n - 1, n);
+  for (int e = 0; e < f.nonzeros(); ++e) j(f.entry_row(e), f.entry_col(e)) = median(Interval(d[e].lower(), d[e].upper()));
   std::vector<std::pair<double, int>> ranked;
   for (int p = 0; p < n; ++p) {
     Eigen::MatrixXd sub(n - 1, n - 1);
@@ -323,23 +335,17 @@ std::vector<int> parameters_by_conditioning(const std::vector<model::Polynomial>
   return order;
 }
 
-Certificate crossing_for(const std::vector<model::Polynomial>& f, const Box& box, int p,
+Certificate crossing_for(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box, int p,
                          const NewtonOptions& o) {
   Box base = box;
   const double value = median(box[p]);
   base[p] = Interval(value);
-  auto s = square_system(f, all_but(box.size(), p), base);
-  Certificate c;
-  if (!s) {
-    c.method = o.method;
-    c = fail(c, Reason::not_square);
-  } else {
-    Box sub = s->restrict(box);
-    c = certify_square(*s, sub, sub, o);
-    if (c.box.size() == sub.size()) c.box = s->embed(c.box);
-    if (c.image.size() == sub.size()) c.image = s->embed(c.image);
-    if (c.point.size() == sub.size()) c.point.insert(c.point.begin() + p, value);
-  }
+  const SquareSystem s(f, all_but(box.size(), p), base);
+  Box sub = s.restrict(box);
+  Certificate c = certify_square(s, sub, sub, o);
+  if (c.box.size() == sub.size()) c.box = s.embed(c.box);
+  if (c.image.size() == sub.size()) c.image = s.embed(c.image);
+  if (c.point.size() == sub.size()) c.point.insert(c.point.begin() + p, value);
   c.fixed_variable = p;
   return c;
 }
@@ -381,14 +387,28 @@ Certificate certify_root(const SquareSystem& f, const Box& hull, const Box& doma
 
 Certificate certify_curve_crossing(const std::vector<model::Polynomial>& f, const Box& box, int parameter,
                                    const NewtonOptions& options) {
+  for (auto& e : f)
+    for (int v : e.variables())
+      if (v >= static_cast<int>(box.size())) {
+        Certificate bad;
+        bad.method = options.method;
+        bad.box = box;
+        bad.fixed_variable = parameter;
+        return fail(bad, Reason::not_square);
+      }
+  return certify_curve_crossing(std::make_shared<const model::CompiledSystem>(f, box.size()), box, parameter, options);
+}
+
+Certificate certify_curve_crossing(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box,
+                                   int parameter, const NewtonOptions& options) {
   Certificate bad;
   bad.method = options.method;
   bad.box = box;
   bad.fixed_variable = parameter;
   const int n = static_cast<int>(box.size());
-  if (n < 2 || static_cast<int>(f.size()) != n - 1 || parameter >= n) return fail(bad, Reason::not_square);
+  if (n < 2 || f->rows() != n - 1 || f->cols() != n || parameter >= n) return fail(bad, Reason::not_square);
   if (!finite_box(box)) return fail(bad, Reason::non_finite);
-  std::vector<int> order = parameter >= 0 ? std::vector<int>{parameter} : parameters_by_conditioning(f, box);
+  std::vector<int> order = parameter >= 0 ? std::vector<int>{parameter} : parameters_by_conditioning(*f, box);
   std::optional<Certificate> first;
   for (int p : order) {
     Certificate c = crossing_for(f, box, p, options);

@@ -75,6 +75,9 @@ Certificate certify_root(const SquareSystem& f, const Box& hull, const Box& doma
 // Boxes in the result are full-size, with box[parameter] degenerate.
 Certificate certify_curve_crossing(const std::vector<model::Polynomial>& f, const Box& box,
                                    int parameter = -1, const NewtonOptions& options = {});
+// The same on `f` compiled once over box.size() variables, for callers that try many boxes.
+Certificate certify_curve_crossing(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box,
+                                   int parameter = -1, const NewtonOptions& options = {});
 
 // Re-checks from (F, box, C) alone, all in interval arithmetic with y = midpoint(box):
 // true when the Newton image lies strictly inside `box`, i.e. exactly one root in `box`.

@@ -8,28 +8,33 @@
 
 namespace linkbox::newton {
 
-FloatSystem::FloatSystem(const std::vector<model::Polynomial>& f, size_t unknowns) : f_(f), df_(f.size()) {
-  for (size_t i = 0; i < f.size(); ++i)
-    for (size_t k = 0; k < unknowns; ++k) df_[i].push_back(f[i].derivative(static_cast<int>(k)));
-}
+FloatSystem::FloatSystem(const std::vector<model::Polynomial>& f, size_t unknowns)
+    : f_(std::make_shared<const model::CompiledSystem>(f, unknowns)) {}
 
+// Compiled, in plain double: these run in loops over every member of a cluster, and
+// Polynomial::eval's protected interval operations (a rounding-mode switch each) were most of
+// the time of verifying a curve.
 Eigen::VectorXd FloatSystem::values(const Eigen::VectorXd& x) const {
-  const Box p = point_box(x);
-  Eigen::VectorXd v(f_.size());
-  for (size_t i = 0; i < f_.size(); ++i) v(i) = median(f_[i].eval(p));
-  return v;
+  Eigen::VectorXd r(f_->rows());
+  f_->values_float(x.data(), r.data());
+  return r;
 }
 
 Eigen::MatrixXd FloatSystem::jacobian(const Eigen::VectorXd& x) const {
-  const Box p = point_box(x);
-  Eigen::MatrixXd j(f_.size(), x.size());
-  for (size_t i = 0; i < f_.size(); ++i)
-    for (int k = 0; k < x.size(); ++k) j(i, k) = median(df_[i][k].eval(p));
+  std::vector<double> d(f_->nonzeros());
+  f_->jacobian_float(x.data(), d.data());
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(f_->rows(), x.size());
+  for (int e = 0; e < f_->nonzeros(); ++e) j(f_->entry_row(e), f_->entry_col(e)) = d[e];
   return j;
 }
 
 Eigen::VectorXd FloatSystem::solve_from(Eigen::VectorXd x) const {
-  for (int it = 0; it < 30; ++it) x -= jacobian(x).completeOrthogonalDecomposition().solve(values(x));
+  for (int it = 0; it < 30; ++it) {
+    const Eigen::VectorXd dx = jacobian(x).completeOrthogonalDecomposition().solve(values(x));
+    x -= dx;
+    // Converged (or stuck): further steps only move x by rounding.
+    if (!(dx.lpNorm<Eigen::Infinity>() > 1e-15 * (1 + x.lpNorm<Eigen::Infinity>()))) break;
+  }
   return x;
 }
 

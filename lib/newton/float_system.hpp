@@ -1,10 +1,12 @@
 #pragma once
 // A polynomial system of any shape in float arithmetic (midpoints of interval values at a
 // point). It only chooses where to look and which equations to keep; it proves nothing.
+#include "model/compiled.hpp"
 #include "model/polynomial.hpp"
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <vector>
 
 namespace linkbox::newton {
@@ -19,8 +21,7 @@ class FloatSystem {
   Eigen::VectorXd solve_from(Eigen::VectorXd x) const;
 
  private:
-  std::vector<model::Polynomial> f_;
-  std::vector<std::vector<model::Polynomial>> df_;
+  std::shared_ptr<const model::CompiledSystem> f_;
 };
 
 Eigen::VectorXd centre(const Box& b);  // midpoints

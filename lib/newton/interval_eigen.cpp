@@ -30,36 +30,58 @@ Eigen::VectorXd midpoint(const IVector& v) {
   return r;
 }
 
+// The products below run inside one RoundingGuard on FastInterval: protected operations
+// would switch the rounding mode twice per multiply-add, which was a third of the time of
+// verifying a curve's boxes.
+namespace {
+FastInterval fast(const Interval& x) { return FastInterval(x.lower(), x.upper()); }
+Interval slow(const FastInterval& x) { return Interval(x.lower(), x.upper()); }
+}  // namespace
+
 IVector multiply(const Eigen::MatrixXd& a, const IVector& x) {
   IVector r(a.rows());
+  RoundingGuard guard;
   for (Eigen::Index i = 0; i < a.rows(); ++i) {
-    Interval s(0.0);
-    for (Eigen::Index k = 0; k < a.cols(); ++k) s += a(i, k) * x(k);
-    r(i) = s;
+    FastInterval s(0.0);
+    for (Eigen::Index k = 0; k < a.cols(); ++k) s += a(i, k) * fast(x(k));
+    r(i) = slow(s);
+  }
+  return r;
+}
+
+IVector multiply(const IMatrix& a, const IVector& x) {
+  IVector r(a.rows());
+  RoundingGuard guard;
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    FastInterval s(0.0);
+    for (Eigen::Index k = 0; k < a.cols(); ++k) s += fast(a(i, k)) * fast(x(k));
+    r(i) = slow(s);
   }
   return r;
 }
 
 IMatrix multiply(const Eigen::MatrixXd& a, const IMatrix& b) {
   IMatrix r(a.rows(), b.cols());
+  RoundingGuard guard;
   for (Eigen::Index i = 0; i < a.rows(); ++i)
     for (Eigen::Index j = 0; j < b.cols(); ++j) {
-      Interval s(0.0);
-      for (Eigen::Index k = 0; k < a.cols(); ++k) s += a(i, k) * b(k, j);
-      r(i, j) = s;
+      FastInterval s(0.0);
+      for (Eigen::Index k = 0; k < a.cols(); ++k) s += a(i, k) * fast(b(k, j));
+      r(i, j) = slow(s);
     }
   return r;
 }
 
 IMatrix identity_minus(const Eigen::MatrixXd& a, const IMatrix& b) {
   IMatrix r(a.rows(), b.cols());
+  RoundingGuard guard;
   for (Eigen::Index i = 0; i < a.rows(); ++i)
     for (Eigen::Index j = 0; j < b.cols(); ++j) {
       // Start from the identity entry so the cancellation 1 - (AB)_ii happens inside one
       // outward-rounded accumulation.
-      Interval s(i == j ? 1.0 : 0.0);
-      for (Eigen::Index k = 0; k < a.cols(); ++k) s -= a(i, k) * b(k, j);
-      r(i, j) = s;
+      FastInterval s(i == j ? 1.0 : 0.0);
+      for (Eigen::Index k = 0; k < a.cols(); ++k) s -= a(i, k) * fast(b(k, j));
+      r(i, j) = slow(s);
     }
   return r;
 }

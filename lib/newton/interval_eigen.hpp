@@ -70,6 +70,7 @@ Eigen::VectorXd midpoint(const IVector& v);
 // Enclosures of A*x, A*B and I - A*B for a double matrix A: each entry of A is taken as an
 // exact point, so the results contain the exact products.
 IVector multiply(const Eigen::MatrixXd& a, const IVector& x);
+IVector multiply(const IMatrix& a, const IVector& x);  // an interval A
 IMatrix multiply(const Eigen::MatrixXd& a, const IMatrix& b);
 IMatrix identity_minus(const Eigen::MatrixXd& a, const IMatrix& b);
 

@@ -46,7 +46,7 @@ NewtonStep krawczyk_step(const SquareSystem& f, const Box& x, const Eigen::Matri
   }
   Centred yc = centre(x);
   // Offset form: K - y = -C F(y) + (I - C F'(X)) (X - y).
-  IVector k = -multiply(c, f.values(point_box(yc.y))) + identity_minus(c, f.jacobian(x)) * yc.offset;
+  IVector k = -multiply(c, f.values(point_box(yc.y))) + multiply(identity_minus(c, f.jacobian(x)), yc.offset);
   s.image.resize(x.size());
   s.interior = true;
   for (size_t i = 0; i < x.size(); ++i) {

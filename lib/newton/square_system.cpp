@@ -85,11 +85,22 @@ IMatrix SquareSystem::jacobian(const Box& x) const {
 }
 
 Eigen::VectorXd SquareSystem::values_at(const Eigen::VectorXd& x) const {
-  return midpoint(values(point_box(x)));
+  const Box full = embed(point_box(x));
+  std::vector<double> y(full.size()), f(compiled_->rows());
+  for (size_t i = 0; i < full.size(); ++i) y[i] = median(full[i]);
+  compiled_->values_float(y.data(), f.data());
+  return Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size()));
 }
 
 Eigen::MatrixXd SquareSystem::jacobian_at(const Eigen::VectorXd& x) const {
-  return midpoint(jacobian(point_box(x)));
+  const Box full = embed(point_box(x));
+  std::vector<double> y(full.size()), d(compiled_->nonzeros());
+  for (size_t i = 0; i < full.size(); ++i) y[i] = median(full[i]);
+  compiled_->jacobian_float(y.data(), d.data());
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(size(), size());
+  for (int e = 0; e < compiled_->nonzeros(); ++e)
+    if (const int k = unknown_column_[e]; k >= 0) j(compiled_->entry_row(e), k) = d[e];
+  return j;
 }
 
 Box point_box(const Eigen::VectorXd& x) {

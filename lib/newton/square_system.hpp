@@ -35,7 +35,8 @@ class SquareSystem {
   IVector values(const Box& x) const;     // F(x), x over the unknowns
   IMatrix jacobian(const Box& x) const;   // dF/d(unknowns) over x
 
-  // Float evaluation at a point: midpoints of the interval values at the degenerate box.
+  // Float evaluation at a point, in double with midpoint coefficients (fixed variables at
+  // their midpoints): guesses for a float Newton, not enclosures.
   Eigen::VectorXd values_at(const Eigen::VectorXd& x) const;
   Eigen::MatrixXd jacobian_at(const Eigen::VectorXd& x) const;
 

@@ -1,28 +1,36 @@
 #include "prune/hc4.hpp"
 
+#include <cmath>
+
 namespace linkbox::prune {
 
 namespace {
 
 FastInterval power(const FastInterval& x, int e) { return e == 1 ? x : boost::numeric::pow(x, e); }
 
-// Narrows x to {v in x : v^e in p}, for e = 1 or 2; false when that set is empty.
+// Narrows x to {v in x : v^e in p}; false when that set is empty. Any e >= 1: the real
+// e-th roots are enclosed by Boost's nth_root (an interval Newton iteration, outward rounded).
 bool project_power(Interval& x, const FastInterval& p, int e) {
   double lo = x.lower(), hi = x.upper();
   if (e == 1) {
     lo = std::max(lo, p.lower());
     hi = std::min(hi, p.upper());
-  } else if (e == 2) {
+  } else if (!std::isfinite(p.lower()) || !std::isfinite(p.upper())) {
+    return true;  // nth_root's iteration needs finite bounds; nothing to learn anyway
+  } else if (e % 2 == 1) {
+    const FastInterval r = boost::numeric::nth_root(p, e);  // odd: one increasing branch
+    lo = std::max(lo, r.lower());
+    hi = std::min(hi, r.upper());
+  } else {
     if (p.upper() < 0) return false;
-    const FastInterval r = sqrt(FastInterval(std::max(0.0, p.lower()), p.upper()));
+    const FastInterval q(std::max(0.0, p.lower()), p.upper());
+    const FastInterval r = e == 2 ? sqrt(q) : boost::numeric::nth_root(q, e);
     // v in [-r.hi, -r.lo] or [r.lo, r.hi]: keep the hull of what meets x.
     const double in_lo = r.lower(), out = r.upper();
     double nlo = kInf, nhi = -kInf;
     if (hi >= -out && lo <= -in_lo) nlo = std::min(nlo, std::max(lo, -out)), nhi = std::max(nhi, std::min(hi, -in_lo));
     if (hi >= in_lo && lo <= out) nlo = std::min(nlo, std::max(lo, in_lo)), nhi = std::max(nhi, std::min(hi, out));
     lo = nlo, hi = nhi;
-  } else {
-    return true;
   }
   if (!(lo <= hi)) return false;
   x = Interval(lo, hi);
@@ -82,7 +90,6 @@ Outcome Hc4::revise(Box& box) {
       if (!(lo <= hi)) return Outcome::empty;
       const FastInterval target(lo, hi);
       for (auto [k, ek] : terms[m].powers) {
-        if (ek > 2) continue;
         FastInterval divisor = terms[m].coef;
         for (auto [j, ej] : terms[m].powers)
           if (j != k) divisor *= power(box[j], ej);

@@ -1,7 +1,7 @@
 #pragma once
 // HC4-revise on sums of monomials (forward evaluation, backward projection onto each
-// variable), the classic constraint-propagation baseline. Projections are made for linear
-// and squared occurrences; higher powers are only evaluated. Equations project the sum onto
+// variable), the classic constraint-propagation baseline. Every occurrence x^e is projected
+// (e-th roots: both branches for even e). Equations project the sum onto
 // 0, inequalities g <= 0 (or < 0) onto (-inf, 0]: a box where g > 0 throughout is empty.
 #include "model/polynomial.hpp"
 #include "prune/contractor.hpp"

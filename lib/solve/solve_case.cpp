@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <mutex>
 #include <algorithm>
+#include <map>
 #include <thread>
 
 namespace linkbox::solve {
@@ -156,6 +157,11 @@ struct Racer {
 constexpr double kRaceShare = 0.125;
 constexpr double kFirstTurn = 4000;
 
+// The projection (work / share of the volume resolved) flatters the LP candidate early on:
+// its first LPs remove whole slabs of the box. The lead passes to a costlier candidate
+// only when it is projected this many times cheaper than the first.
+constexpr double kLeadMargin = 2;
+
 double projected(const Search& s) { return s.work() / std::max(s.fraction_done(), 1e-9); }
 
 // A solution box that the certifier did not settle (too wide for Newton near a close pair of
@@ -173,15 +179,24 @@ constexpr double kRefineWork = 2000;  // per box: what cannot be settled within 
 // planted pairs 5e-4 apart: ~120 per root); all the refinements of a run together get at
 // most twice the search's work, plus kRefineWork per box for small searches.
 constexpr size_t kRefineGroup = 1024;
+// Along a curve (a mobile linkage at sigma 0.1) refinement proves the spurious boxes empty
+// cheaply (1-20 work each, a few hundred at most), but the boxes the curve crosses use up
+// kRefineWork each for nothing: 90% of the mobile 6R's refinement. So once kRefineProbe of a
+// group's refinements were cut short and none certified a root, the rest of the group gets
+// kRefineQuick each: enough to drop what is empty, not to chase the curve.
+constexpr int kRefineProbe = 3;
+constexpr double kRefineQuick = 50;
 constexpr size_t kRefineMax = 4000;
 
 // Per uncertified solution box: whether its group of touching uncertified boxes is small.
-std::vector<char> in_small_group(const Result& r) {
+// Per solution: the group of touching uncertified boxes it belongs to, or -1 when it is
+// certified or its group is too large to refine.
+std::vector<int> small_groups(const Result& r) {
   std::vector<size_t> open;
   for (size_t k = 0; k < r.solutions.size(); ++k)
     if (!r.certified[k]) open.push_back(k);
-  std::vector<char> small(r.solutions.size(), 0);
-  if (open.size() > kRefineMax) return small;
+  std::vector<int> result(r.solutions.size(), -1);
+  if (open.size() > kRefineMax) return result;
   std::vector<int> group(open.size(), -1);
   std::vector<size_t> size;
   for (size_t a = 0; a < open.size(); ++a) {
@@ -201,32 +216,45 @@ std::vector<char> in_small_group(const Result& r) {
         }
     }
   }
-  for (size_t a = 0; a < open.size(); ++a) small[open[a]] = size[group[a]] <= kRefineGroup;
-  return small;
+  for (size_t a = 0; a < open.size(); ++a)
+    if (size[group[a]] <= kRefineGroup) result[open[a]] = group[a];
+  return result;
 }
 
 void refine(Result& r, double search_work, const formulate::SubProblem& sub, const Params& params, Budget& budget,
             prune::Sequence& contractor, Certifier& certifier, const Bisector& bisector) {
   Params fine = params;
   double allowance = 2 * search_work + 20 * kRefineWork;
+  // A box whose refinement was cut short stays as it was, and a smaller sigma would only
+  // make its next attempt costlier: it is not refined again.
+  std::vector<char> stuck(r.solutions.size(), 0);
   for (int round = 0; round < kRefineRounds; ++round) {
     fine.sigma = std::max(fine.sigma * kRefineFactor, kSigmaFloor);
     Result out;
+    std::vector<char> out_stuck;
     bool changed = false;
-    const std::vector<char> small = in_small_group(r);
+    const std::vector<int> group = small_groups(r);
+    std::map<int, std::pair<int, int>> tried;  // per group: refinements cut short, roots certified
     for (size_t k = 0; k < r.solutions.size(); ++k) {
-      if (r.certified[k] || !small[k] || budget.exhausted() || fine.sigma >= params.sigma || allowance <= 0) {
+      auto& [cut_short, certified] = tried[group[k]];
+      if (r.certified[k] || group[k] < 0 || stuck[k] || budget.exhausted() || fine.sigma >= params.sigma ||
+          allowance <= 0) {
         out.solutions.push_back(std::move(r.solutions[k]));
         out.certified.push_back(r.certified[k]);
+        out_stuck.push_back(stuck[k]);
         continue;
       }
       Search search(r.solutions[k], contractor, sub.split_dims, fine, budget, &certifier, &bisector);
-      const bool finished = search.run(1, std::min(kRefineWork, allowance));
+      const double work = cut_short >= kRefineProbe && certified == 0 ? kRefineQuick : kRefineWork;
+      const bool finished = search.run(1, std::min(work, allowance));
       allowance -= search.work();
       Result part = search.result();
+      cut_short += !finished;
+      certified += static_cast<int>(std::count(part.certified.begin(), part.certified.end(), 1));
       if (!finished || !part.complete) {  // stopped by a limit: keep the box as it was
         out.solutions.push_back(std::move(r.solutions[k]));
         out.certified.push_back(false);
+        out_stuck.push_back(1);
         continue;
       }
       changed = true;
@@ -236,10 +264,12 @@ void refine(Result& r, double search_work, const formulate::SubProblem& sub, con
       for (size_t j = 0; j < part.solutions.size(); ++j) {
         out.solutions.push_back(std::move(part.solutions[j]));
         out.certified.push_back(part.certified[j]);
+        out_stuck.push_back(0);
       }
     }
     r.solutions = std::move(out.solutions);
     r.certified = std::move(out.certified);
+    stuck = std::move(out_stuck);
     if (!changed) break;
   }
   r.stats.solution = static_cast<long>(r.solutions.size());
@@ -313,11 +343,12 @@ void solve_subproblem(const formulate::Formulation& formulation, size_t i, const
         if (race.next == 0 && race.turn > kFirstTurn) {
           race.lead = 0;
           for (size_t k = 1; k < racers.size(); ++k)
-            if (projected(*racers[k]->search) < projected(*racers[race.lead]->search)) race.lead = k;
+            if (projected(*racers[k]->search) * kLeadMargin < projected(*racers[race.lead]->search)) race.lead = k;
         }
-        // First turn: the costlier candidates get the share too (their projection needs little).
+        // First turn: every candidate gets the share (a costly first box of one should not
+        // delay another that finishes at once: the rigid 6R's LP candidate).
         const size_t k = race.next;
-        const double share = k == race.lead && (k == 0 || race.turn > kFirstTurn) ? 1 : kRaceShare;
+        const double share = k == race.lead && race.turn > kFirstTurn ? 1 : kRaceShare;
         race.target = search.work() + race.turn * share;
       }
       search.run(1, race.target);

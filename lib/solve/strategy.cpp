@@ -1,6 +1,7 @@
 #include "solve/strategy.hpp"
 
 #include "formulate/to_lph.hpp"
+#include "prune/acid.hpp"
 #include "prune/hc4.hpp"
 #include "prune/lifted.hpp"
 #include "prune/lp_relaxation.hpp"
@@ -34,7 +35,13 @@ std::unique_ptr<Contractor> make_contractor(const std::string& name, const Strat
   }
   if (name == "newton") return std::make_unique<IntervalNewton>(pruned.equations, pruned.variables.size(), options.arith);
   if (name == "hc4") return std::make_unique<Hc4>(pruned.equations, options.arith, pruned.inequalities);
-  throw std::invalid_argument("unknown pruning strategy '" + name + "' (known: auto, trapezoid, lp, hc4, newton)");
+  if (name == "acid") {
+    std::vector<int> dims;
+    for (int d : sub.split_dims)
+      if (d < static_cast<int>(pruned.variables.size())) dims.push_back(d);
+    return std::make_unique<Acid>(std::make_unique<Hc4>(pruned.equations, options.arith, pruned.inequalities), dims);
+  }
+  throw std::invalid_argument("unknown pruning strategy '" + name + "' (known: auto, trapezoid, lp, hc4, acid, newton)");
 }
 
 }  // namespace
@@ -88,8 +95,9 @@ std::vector<std::string> parse_strategy_list(const std::string& text) {
   flush();
   // Checked here so a misspelt name fails before any work, wherever it was written.
   for (auto& name : r)
-    if (name != "/" && name != "auto" && name != "trapezoid" && name != "lp" && name != "hc4" && name != "newton")
-      throw std::invalid_argument("unknown pruning strategy '" + name + "' (known: auto, trapezoid, lp, hc4, newton)");
+    if (name != "/" && name != "auto" && name != "trapezoid" && name != "lp" && name != "hc4" && name != "acid" &&
+        name != "newton")
+      throw std::invalid_argument("unknown pruning strategy '" + name + "' (known: auto, trapezoid, lp, hc4, acid, newton)");
   if (std::count(r.begin(), r.end(), "/") == static_cast<long>(r.size()))
     throw std::invalid_argument("no pruning strategy given");
   return r;
