@@ -123,6 +123,21 @@ TEST_CASE("flags override the case's settings, and the summary says where each c
   CHECK(r.out.find(path + ":6: [solve] prune: unknown pruning strategy 'hc5'") != std::string::npos);
 }
 
+TEST_CASE("rho without a setting: the papers' 0.99 on spherical cases, 0.8 elsewhere; a flag wins", "[run_control][cli]") {
+  const std::string path = tmp("rho.toml"), out = tmp("rho.json");
+  write(path, kCircle);
+  Ran r = run("solve " + path + " --json " + out + " --quiet");
+  REQUIRE(r.code == 0);
+  CHECK(read(out)["parameters"]["rho"] == solve::kAutoRho);
+  CHECK(r.out.find("rho=auto (0.8)") != std::string::npos);
+  REQUIRE(run("solve " + src("cases/spherical/wrist.toml") + " --json " + out + " --quiet").code == 0);
+  CHECK(read(out)["parameters"]["rho"] == solve::kPapersRho);
+  r = run("solve " + path + " --rho 0.95 --json " + out + " --quiet");
+  REQUIRE(r.code == 0);
+  CHECK(read(out)["parameters"]["rho"] == 0.95);
+  CHECK(r.out.find("rho=0.95") != std::string::npos);
+}
+
 TEST_CASE("output problems are bad input, reported before the search", "[run_control][cli]") {
   Ran r = run("solve " + src("cases/spherical/wrist.toml") + " --quiet --json /nonexistent-dir/x.json");
   CHECK(r.code == 2);

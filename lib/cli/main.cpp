@@ -251,13 +251,13 @@ void add_search_options(CLI::App& cmd, SolveCommand& s) {
   solve::RunOptions& o = s.options;
   cmd.add_option("--sigma", o.params.sigma, "solution box size (default 1e-4, or the case's [solve] table)")
       ->check(number(0, true));
-  cmd.add_option("--rho", o.params.rho, "split when volume ratio after a shrink exceeds rho")->check(number(0, true, 1));
+  cmd.add_option("--rho", o.params.rho, "split when volume ratio after a shrink exceeds rho (default: 0.99 on spherical cases, the papers' value; 0.8 elsewhere)")->check(number(0, true, 1));
   cmd.add_option("--order", o.params.order, "dfs or bfs")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, solve::Order>{{"dfs", solve::Order::depth_first}, {"bfs", solve::Order::breadth_first}}));
   s.prune = solve::strategy_name(o.strategy.contractors);  // the default
   cmd.add_option("--prune", s.prune,
-                 "contractors: auto (default), or a comma-separated list of trapezoid, hc4, newton, lp; '/' starts a "
+                 "contractors: auto (default), or a comma-separated list of trapezoid, hc4, acid, newton, lp; '/' starts a "
                  "stage that runs only when the earlier ones stall, e.g. hc4,newton/lp");
   cmd.add_option("--bisect", o.bisect, "auto (default), widest, round-robin or smear")
       ->transform(CLI::CheckedTransformer(std::map<std::string, solve::Bisect>{{"auto", solve::Bisect::automatic},

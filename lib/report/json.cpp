@@ -35,7 +35,7 @@ json result_json(const std::string& case_name, const std::string& case_file,
   j["variables"] = formulation.output_names();
   j["variables_unit"] = formulation.outputs_are_angles() ? "radians" : "";
   j["parameters"] = {{"sigma", p.sigma},
-                     {"rho", p.rho},
+                     {"rho", p.rho > 0 || result.rho <= 0 ? p.rho : result.rho},  // auto resolved
                      {"order", p.order == solve::Order::depth_first ? "dfs" : "bfs"},
                      {"prune", solve::strategy_name(options.strategy.contractors)},
                      {"bisect", solve::to_string(options.bisect)},

@@ -31,8 +31,13 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
   const std::string asked_bisect = solve::to_string(o.bisect);
   const std::string bisect =
       asked_bisect == r.bisect || r.bisect.empty() ? asked_bisect : asked_bisect + " (" + r.bisect + ")";
-  std::fprintf(out, "strategy  prune=%s bisect=%s sigma=%g rho=%g order=%s threads=%d%s\n", prune.c_str(), bisect.c_str(),
-               o.params.sigma, o.params.rho,
+  char rho[48];
+  if (o.params.rho > 0 || r.rho <= 0)
+    std::snprintf(rho, sizeof rho, "%g", o.params.rho);
+  else
+    std::snprintf(rho, sizeof rho, "auto (%g)", r.rho);
+  std::fprintf(out, "strategy  prune=%s bisect=%s sigma=%g rho=%s order=%s threads=%d%s\n", prune.c_str(), bisect.c_str(),
+               o.params.sigma, rho,
                o.params.order == solve::Order::depth_first ? "dfs" : "bfs", o.threads,
                r.rigorous ? "" : "  arith=float (UNVERIFIED: boxes discarded on float evidence)");
   std::fputs(race_line.c_str(), out);

@@ -42,6 +42,7 @@ struct SubResult {
   std::vector<prune::Counters> counters;  // per contractor of the strategy
   std::vector<std::string> strategy;      // what ran ("auto" resolved; "/" between stages)
   std::string bisect;                     // the bisection rule ("auto" resolved)
+  double rho = 0;                         // the rho used (auto resolved)
   // When "auto" raced candidates: each one's name and work done (boxes + kLpWork per LP),
   // the winner last.
   std::vector<std::pair<std::string, double>> race;
@@ -51,6 +52,7 @@ struct CaseResult {
   std::vector<SubResult> subproblems;
   std::vector<std::string> strategy;          // what ran (see SubResult::strategy)
   std::string bisect;                         // likewise
+  double rho = 0;                             // likewise
   std::vector<std::string> contractor_names;  // one per counter
   Stats total;
   std::vector<prune::Counters> counters;  // summed over sub-problems

@@ -288,7 +288,10 @@ void solve_subproblem(const formulate::Formulation& formulation, size_t i, const
                       const SubCheckpoint* resume, Shared& run, Tally& tally, SubResult& s) {
   const RunOptions& options = run.options;
   StrategyOptions strategy = options.strategy;
-  strategy.stall = options.params.rho;
+  strategy.stall = rho_for(options.params.rho, true);  // the LP stage waits for a stall as in the paper
+  Params params = options.params;
+  params.rho = rho_for(options.params.rho, sub.clipping);
+  s.rho = params.rho;
   std::vector<std::vector<std::string>> candidates{strategy.contractors};
   if (strategy.contractors == std::vector<std::string>{"auto"}) candidates = auto_candidates(sub);
   const Bisector bisector(options.bisect, sub, options.params.sigma);
@@ -297,7 +300,7 @@ void solve_subproblem(const formulate::Formulation& formulation, size_t i, const
   for (auto& names : candidates) {
     strategy.contractors = names;
     auto r = std::unique_ptr<Racer>(new Racer{make_strategy(strategy, sub), NaturalCertifier(formulation, i), nullptr});
-    r->search = std::make_unique<Search>(sub.system.domain(), *r->strategy.sequence, sub.split_dims, options.params,
+    r->search = std::make_unique<Search>(sub.system.domain(), *r->strategy.sequence, sub.split_dims, params,
                                          run.budget, &r->certifier, &bisector);
     r->search->report_to(&tally.pending, &tally.done);
     racers.push_back(std::move(r));
@@ -399,7 +402,7 @@ void solve_subproblem(const formulate::Formulation& formulation, size_t i, const
   // Only Newton tells the certifier where to look; without it a refinement cannot certify.
   const auto& names = winner->strategy.names;
   if (std::find(names.begin(), names.end(), "newton") != names.end())
-    refine(r, winner->search->work(), sub, options.params, run.budget, *winner->strategy.sequence, winner->certifier,
+    refine(r, winner->search->work(), sub, params, run.budget, *winner->strategy.sequence, winner->certifier,
            bisector);
   s.solutions = std::move(r.solutions);
   s.certified = std::move(r.certified);
@@ -500,6 +503,7 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
     if (!s.strategy.empty()) {
       result.strategy = s.strategy;
       result.bisect = s.bisect;
+      result.rho = s.rho;
       break;
     }
   result.rigorous = options.strategy.arith == Arith::verified;
