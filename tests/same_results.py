@@ -39,7 +39,7 @@ RUNS = [
     ("cases/hard/gimbal-lock.toml", ["--prune", "trapezoid", "--sigma", "1e-2"]),
 ]
 
-TIMING_KEYS = {"seconds", "cpu_seconds", "wall_seconds", "time", "lp_microseconds"}
+TIMING_KEYS = {"seconds", "cpu_seconds", "search_seconds", "wall_seconds", "time", "lp_microseconds"}
 
 
 def run_name(case, flags):

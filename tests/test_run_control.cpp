@@ -38,7 +38,7 @@ void write(const std::string& file, const std::string& text) { std::ofstream(fil
 nlohmann::json comparable(nlohmann::json j) {
   std::function<void(nlohmann::json&)> strip = [&](nlohmann::json& x) {
     if (x.is_object()) {
-      for (const char* key : {"seconds", "cpu_seconds"}) x.erase(key);
+      for (const char* key : {"seconds", "cpu_seconds", "search_seconds"}) x.erase(key);
       for (auto& [k, v] : x.items()) strip(v);
     } else if (x.is_array()) {
       for (auto& v : x) strip(v);
@@ -136,6 +136,12 @@ TEST_CASE("rho without a setting: the papers' 0.99 on spherical cases, 0.8 elsew
   REQUIRE(r.code == 0);
   CHECK(read(out)["parameters"]["rho"] == 0.95);
   CHECK(r.out.find("rho=0.95") != std::string::npos);
+  // One thread: the process's CPU time during the search cannot exceed its wall time (a sum
+  // of wall times read as CPU could); rusage ticks leave a little slack.
+  const auto stats = read(out)["stats"];
+  CHECK(stats["cpu_seconds"].get<double>() >= 0);
+  CHECK(stats["cpu_seconds"].get<double>() <= stats["seconds"].get<double>() + 0.02);
+  CHECK(stats.contains("search_seconds"));
 }
 
 TEST_CASE("output problems are bad input, reported before the search", "[run_control][cli]") {

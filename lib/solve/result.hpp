@@ -62,6 +62,7 @@ struct CaseResult {
   double volume_left = 0;   // unexplored share of the domain, averaged over sub-problems
   bool rigorous = true;     // false: float pruning (--arith float), exclusion not proved
   double seconds = 0;       // wall clock of the whole run
+  double cpu_seconds = 0;   // CPU time of the process during the run (user + system, every thread)
 };
 
 }  // namespace linkbox::solve

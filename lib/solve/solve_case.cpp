@@ -9,6 +9,8 @@
 #include <map>
 #include <thread>
 
+#include <sys/resource.h>
+
 namespace linkbox::solve {
 
 namespace {
@@ -141,6 +143,12 @@ class Ticker {
 }  // namespace
 
 namespace {
+
+double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 struct Racer {
   Strategy strategy;
@@ -428,6 +436,7 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
                                 " sub-problems, this case " + std::to_string(n));
   CaseResult result;
   result.subproblems.resize(n);
+  const double cpu_start = process_cpu_seconds();
   Budget budget(options.params);
   Checkpointer checkpoints(options, n);
   std::vector<Tally> tallies(n);
@@ -509,6 +518,7 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
   result.rigorous = options.strategy.arith == Arith::verified;
   if (!result.complete) result.stop_reason = budget.reason();
   result.seconds = budget.elapsed();
+  result.cpu_seconds = process_cpu_seconds() - cpu_start;
   return result;
 }
 
