@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <sys/wait.h>
 #include <thread>
@@ -271,6 +272,65 @@ TEST_CASE("the LP contractor stops between LPs when asked, keeping only proved b
   Box full = lph.domain();
   REQUIRE(lp.contract(full) != prune::Outcome::empty);
   CHECK(lp.lps_solved() > 2);
+}
+
+namespace {
+
+// Shrinks every box a little forever, or spoils it with NaN bounds: what a float variant can do.
+class Endless final : public prune::Contractor {
+ public:
+  explicit Endless(bool nan, std::atomic<int>* raise_after = nullptr) : nan_(nan), raise_(raise_after) {}
+  std::string name() const override { return "endless"; }
+  prune::Outcome contract(Box& box) override {
+    if (raise_ && ++calls_ == 1000) raise_->store(1);  // a signal arrives in the middle of one box
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (nan_) {
+      box[0] = Interval(nan, nan);
+    } else {
+      for (auto& x : box) x = Interval(x.lower(), x.upper() - 0.3 * (x.upper() - x.lower()));
+    }
+    return prune::Outcome::shrunk;
+  }
+  std::unique_ptr<prune::Contractor> clone() const override { return std::make_unique<Endless>(nan_, raise_); }
+
+ private:
+  bool nan_;
+  std::atomic<int>* raise_;
+  long calls_ = 0;
+};
+
+solve::Result search_with(std::unique_ptr<prune::Contractor> c, solve::Params p) {
+  std::vector<std::unique_ptr<prune::Contractor>> members;
+  members.push_back(std::move(c));
+  prune::Sequence seq(std::move(members));
+  solve::Budget budget(p);
+  solve::Search search(Box{Interval(0, 1), Interval(0, 1)}, seq, {0, 1}, p, budget);
+  search.run();
+  return search.result();
+}
+
+}  // namespace
+
+TEST_CASE("a box whose passes never stop shrinking still yields to an interrupt; NaN bounds are not a result",
+          "[run_control]") {
+  std::atomic<int> interrupt{0};
+  solve::Params p;
+  p.sigma = 1e-300;
+  p.rho = 0.99;  // every pass removes more than 1%: one box would take ~1e5 passes
+  p.interrupt = &interrupt;
+  const solve::Result r = search_with(std::make_unique<Endless>(false, &interrupt), p);
+  CHECK_FALSE(r.complete);
+  REQUIRE(r.pending.size() == 1);  // the box it was shrinking, back as it was taken
+  CHECK(r.pending[0][0].upper() == 1);
+
+  solve::Params q;
+  q.sigma = 0.3;
+  const solve::Result n = search_with(std::make_unique<Endless>(true), q);
+  CHECK(n.complete);
+  REQUIRE_FALSE(n.solutions.empty());
+  for (auto& b : n.solutions)
+    for (auto& x : b) CHECK_FALSE(std::isnan(x.lower()));
+  CHECK(n.solutions.size() == 16);  // [0,1]^2 split down to sides 0.25: the boxes as they were
 }
 
 TEST_CASE("a budget stops on an interrupt and reads the clock between LPs", "[run_control]") {

@@ -1,6 +1,7 @@
 #include "solve/branch_and_prune.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <condition_variable>
 #include <deque>
 #include <mutex>
@@ -67,14 +68,24 @@ using Found = SearchState::Found;
 enum class Verdict { empty, certified, solution, split, stopped };
 
 // Shrinks until empty, certified, small, or no longer shrinking by more than rho.
+// `stop` is asked between passes too: one box can take many passes (a float variant that
+// produced NaN bounds used to loop here for good, deaf to SIGTERM).
 Verdict shrink(Box& box, prune::Sequence::Backoff& backoff, prune::Sequence& contractor, Certifier* certifier,
-               std::span<const int> dims, const Params& params, const bool& cut, Stats& stats) {
+               std::span<const int> dims, const Params& params, const bool& cut, const std::function<bool()>& stop,
+               Stats& stats) {
   while (true) {
+    if (stop()) return Verdict::stopped;
     Box before = box;
     stats.shrinks++;
     const prune::Outcome outcome = contractor.contract(box, backoff);
     if (cut) return Verdict::stopped;
     if (outcome == prune::Outcome::empty) return Verdict::empty;
+    // A NaN bound (an overflow in the unverified float variant) proves nothing: the box as it
+    // was before the pass is split.
+    if (std::any_of(box.begin(), box.end(), [](const Interval& x) { return std::isnan(x.lower()) || std::isnan(x.upper()); })) {
+      box = std::move(before);
+      return max_width(box, dims) <= params.sigma ? Verdict::solution : Verdict::split;
+    }
     if (certifier && contractor.at_most_one_root()) {
       stats.certify_calls++;
       if (certifier->certify(box)) return Verdict::certified;
@@ -209,7 +220,7 @@ bool Search::run(int threads, double work_limit) {
       stats.processed++;
       const double volume = volume_ratio(st.start, node.box, st.split_dims);
       const long lps = lps_of(c);
-      const Verdict v = shrink(node.box, node.backoff, c, certify, st.split_dims, params, cut, stats);
+      const Verdict v = shrink(node.box, node.backoff, c, certify, st.split_dims, params, cut, stop, stats);
       const double work = 1 + kLpWork * static_cast<double>(lps_of(c) - lps) + (v == Verdict::solution ? kSolutionWork : 0);
       std::pair<Node, Node> halves;
       if (v == Verdict::stopped) {
