@@ -39,6 +39,8 @@ class Budget {
   // Between the costly steps of one box (the LPs of a relaxation): reads the clock and the
   // interrupt, so a limit is honoured within one LP, not one box.
   bool stop_now();
+  // Stops the run from outside (another process reached a limit): as if it had been reached here.
+  void halt(const char* why) { stop(why); }
   bool exhausted() const { return exhausted_.load(std::memory_order_relaxed); }
   const std::string& reason() const { return reason_; }
   long boxes_taken() const { return taken_.load(); }
