@@ -82,7 +82,7 @@ void catch_interrupts() {
 // ---- commands
 
 struct SolveCommand {
-  std::string case_file, json_out, prune, checkpoint;
+  std::string case_file, json_out, prune, checkpoint, record_tree;
   solve::RunOptions options;
   bool quiet = false, no_verify = false;
   std::string resume;  // resume: the checkpoint to go on from
@@ -205,11 +205,12 @@ int run_solve(SolveCommand& cmd) {
   solve::RunOptions& o = cmd.options;
   o.progress = !cmd.quiet;
   o.params.interrupt = &interrupts;
-  if (distributed_run() && (!cmd.checkpoint.empty() || !cmd.resume.empty()))
-    throw std::invalid_argument("checkpoints (--checkpoint, resume) are for runs of one process, not under mpirun");
+  if (distributed_run() && (!cmd.checkpoint.empty() || !cmd.resume.empty() || !cmd.record_tree.empty()))
+    throw std::invalid_argument("checkpoints (--checkpoint, resume) and --record-tree are for runs of one process, not under mpirun");
   if (speaks()) {
     check_writable(cmd.json_out, "--json");
     check_writable(cmd.checkpoint, "--checkpoint");
+    check_writable(cmd.record_tree, "--record-tree");
   }
 
   std::optional<solve::Checkpoint> saved;
@@ -248,7 +249,20 @@ int run_solve(SolveCommand& cmd) {
     return report_and_verify(cmd, c, *r, {{"distributed", figures.json()}});
   }
 #endif
-  return report_and_verify(cmd, c, solve::solve_case(*c.formulation, o), nlohmann::json::object());
+  solve::BoxLog log;
+  if (!cmd.record_tree.empty()) o.box_log = &log;
+  const solve::CaseResult r = solve::solve_case(*c.formulation, o);
+  if (!cmd.record_tree.empty()) {
+    std::string csv = "subproblem,candidate,path,outcome,seconds\n";
+    for (auto& e : log.take()) {
+      char seconds[32];
+      std::snprintf(seconds, sizeof seconds, "%.4g", e.seconds);
+      csv += std::to_string(e.subproblem) + ',' + std::to_string(e.candidate) + ',' + e.path + ',' + e.outcome + ',' +
+             seconds + '\n';
+    }
+    solve::write_atomically(cmd.record_tree, csv);
+  }
+  return report_and_verify(cmd, c, r, nlohmann::json::object());
 }
 
 int run_check(const CheckCommand& cmd) {
@@ -332,6 +346,9 @@ void add_run_options(CLI::App& cmd, SolveCommand& s) {
   cmd.add_option("--checkpoint-every", o.checkpoint_every, "seconds between checkpoints (default 60)")
       ->check(number(0, true));
   cmd.add_flag("--quiet", s.quiet, "no progress on stderr");
+  cmd.add_option("--record-tree", s.record_tree,
+                 "write every processed box (sub-problem, raced candidate, path, outcome, seconds) as CSV: the "
+                 "search tree that papers/benchmarks/scaling.py replays");
   cmd.add_flag("--no-verify", s.no_verify, "skip clustering and certification");
 }
 

@@ -33,7 +33,9 @@ json Figures::json() const {
           {"units", units},
           {"steals", steals},
           {"boxes_given", boxes_given},
-          {"boxes", boxes}};
+          {"boxes", boxes},
+          {"handled", handled},
+          {"handling_seconds", handling_seconds}};
 }
 
 namespace {
@@ -463,7 +465,12 @@ std::optional<solve::CaseResult> Process::run(Figures* figures) {
       active = !out.empty();
     }
     while (auto m = wire_.receive()) {
+      const auto t0 = std::chrono::steady_clock::now();
       handle(std::move(*m));
+      if (root) {
+        ++figures_.handled;
+        figures_.handling_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      }
       active = true;
     }
     if (leaving_) break;

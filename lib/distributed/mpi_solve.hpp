@@ -32,6 +32,8 @@ struct Figures {  // what the distribution cost, for the report (rank 0)
   long steals = 0;        // boxes asked of a running search
   long boxes_given = 0;   // and given
   long boxes = 0;         // processed over the ranks
+  long handled = 0;       // messages rank 0's main thread handled (its own slots' too)
+  double handling_seconds = 0;  // and the time it took: the coordinator's cost per message
   nlohmann::json json() const;
 };
 

@@ -309,6 +309,7 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     r->search = std::make_unique<Search>(sub.system.domain(), *r->strategy.sequence, sub.split_dims, options.params,
                                          run.budget, &r->certifier, &bisector);
     r->search->report_to(&tally.pending, &tally.done);
+    if (options.box_log) r->search->log_to(options.box_log, i, static_cast<int>(racers.size()));
     racers.push_back(std::move(r));
   }
 
