@@ -1,6 +1,7 @@
 #include "distributed/mpi_solve.hpp"
 
 #include "input/input_error.hpp"
+#include "interval/rigorous.hpp"
 #include "solve/checkpoint.hpp"
 #include "solve/share.hpp"
 
@@ -449,7 +450,11 @@ std::optional<solve::CaseResult> Process::run(Figures* figures) {
     boxes_.assign(world_.size(), 0);
     gone_.assign(world_.size(), 0);
   }
-  for (int k = 0; k < slots_per_rank_; ++k) slots_[k]->thread = std::thread([this, k] { slot_main(k); });
+  for (int k = 0; k < slots_per_rank_; ++k)
+    slots_[k]->thread = std::thread([this, k] {
+      slot_main(k);
+      rigorous::release_thread_caches();
+    });
   const double timeout = fault_timeout();
   auto last_beat = std::chrono::steady_clock::now() - std::chrono::seconds(1);
   auto last_line = std::chrono::steady_clock::now();
