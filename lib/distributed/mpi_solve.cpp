@@ -10,8 +10,8 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <deque>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -177,6 +177,7 @@ class Process {
   void post(int to, Message m) {
     std::lock_guard lock(outbox_m_);
     outbox_.emplace_back(to, std::move(m));
+    outbox_cv_.notify_one();
   }
 
   Message wait(Slot& s) {
@@ -264,7 +265,11 @@ class Process {
   void stop(const std::string& why);
   void send_unit(int worker, const std::string& kind, size_t sub, json extra, std::string payload);
   int worker_of(const Message& m) const { return m.from * slots_per_rank_ + m.head.at("slot").get<int>(); }
-  bool all_done() const { return running_.empty() && to_finish_.empty() && (next_sub_ == subs_.size() || stopping_); }
+  bool all_done() const {
+    for (auto& q : queue_)
+      if (!q.empty()) return false;
+    return to_finish_.empty() && (next_sub_ == subs_.size() || stopping_);
+  }
   void progress_line();
 
   const formulate::Formulation& f_;
@@ -277,6 +282,7 @@ class Process {
   int slots_per_rank_ = 1;
   std::vector<std::unique_ptr<Slot>> slots_;
   std::mutex outbox_m_;
+  std::condition_variable outbox_cv_;  // the main thread sleeps on it between polls
   std::deque<std::pair<int, Message>> outbox_;
   bool leaving_ = false;     // this rank's part is over
   bool told_stop_ = false;   // rank 0 knows that this rank's budget ran out
@@ -285,8 +291,9 @@ class Process {
   // rank 0
   std::vector<SubState> subs_;
   size_t next_sub_ = 0;
-  std::deque<int> idle_;
-  std::map<int, Running> running_;
+  // Per worker (rank x slot): the units sent, in the order it runs them; the front one runs.
+  std::vector<std::deque<Running>> queue_;
+  std::vector<char> waiting_;  // per worker: asked a running search for a box on its behalf
   std::deque<size_t> to_finish_;
   bool stopping_ = false;
   bool quitting_ = false;
@@ -299,7 +306,7 @@ class Process {
 void Process::send_unit(int worker, const std::string& kind, size_t sub, json extra, std::string payload) {
   json head = {{"t", "work"}, {"slot", worker % slots_per_rank_}, {"unit", next_unit_}, {"kind", kind}, {"sub", sub}};
   head.update(extra);
-  running_[worker] = {next_unit_++, sub, kind};
+  queue_[worker].push_back({next_unit_++, sub, kind});
   ++figures_.units;
   wire_.send(worker / slots_per_rank_, {0, head, std::move(payload)});
 }
@@ -311,48 +318,70 @@ void Process::stop(const std::string& why) {
   for (int r = 0; r < world_.size(); ++r) wire_.send(r, {0, {{"t", "stop"}, {"why", why}}, ""});
 }
 
+// Sub-problems go out in batches queued at each worker, so a slot never waits for its next
+// one (the four-loop's 4 096 sub-problems take ~0.2 ms each, less than a round trip to rank 0);
+// the batches shrink as the sub-problems run out (guided self-scheduling), so none is left
+// with a long queue at the end. Then a worker with nothing queued gets a box of a running search.
 void Process::dispatch() {
-  while (!idle_.empty() && !quitting_) {
-    const int w = idle_.front();
-    if (!to_finish_.empty()) {
-      const size_t i = to_finish_.front();
-      to_finish_.pop_front();
-      Piece& merged = *subs_[i].merged;
-      send_unit(w, "finish", i, piece_head("work", merged), piece_text(merged));
-      subs_[i].merged.reset();
-    } else if (stopping_) {
-      break;
-    } else if (next_sub_ < subs_.size()) {
-      subs_[next_sub_].live = 1;
-      send_unit(w, "sub", next_sub_++, json::object(), "");
-    } else {
-      // Ask the longest-running unit whose search shares: its tree has had the longest to grow.
-      int v = -1;
-      for (auto& [key, r] : running_)
-        if (r.shares && !r.dry && r.thief < 0 && r.kind != "finish" && (v < 0 || r.unit < running_.at(v).unit)) v = key;
-      if (v < 0) break;
-      Running* victim = &running_.at(v);
-      victim->thief = w;
-      ++figures_.steals;
-      wire_.send(v / slots_per_rank_, {0, {{"t", "steal"}, {"slot", v % slots_per_rank_}, {"unit", victim->unit}}, ""});
+  if (quitting_) return;
+  const size_t workers = queue_.size();
+  auto shortest = [&] {
+    size_t best = 0;
+    for (size_t w = 1; w < workers; ++w)
+      if (queue_[w].size() < queue_[best].size()) best = w;
+    return static_cast<int>(best);
+  };
+  while (!to_finish_.empty()) {
+    const size_t i = to_finish_.front();
+    to_finish_.pop_front();
+    Piece& merged = *subs_[i].merged;
+    send_unit(shortest(), "finish", i, piece_head("work", merged), piece_text(merged));
+    subs_[i].merged.reset();
+  }
+  if (stopping_) return;
+  if (next_sub_ < subs_.size()) {
+    const size_t batch = std::clamp<size_t>((subs_.size() - next_sub_) / (4 * workers), 1, 32);
+    for (size_t w = 0; w < workers; ++w)
+      while (queue_[w].size() < batch && next_sub_ < subs_.size()) {
+        subs_[next_sub_].live = 1;
+        send_unit(static_cast<int>(w), "sub", next_sub_++, json::object(), "");
+      }
+    return;
+  }
+  for (size_t w = 0; w < workers; ++w) {
+    if (!queue_[w].empty() || waiting_[w]) continue;
+    // Ask the longest-running unit whose search shares: its tree has had the longest to grow.
+    Running* victim = nullptr;
+    int v = -1;
+    for (size_t k = 0; k < workers; ++k) {
+      if (queue_[k].empty()) continue;
+      Running& r = queue_[k].front();
+      if (r.shares && !r.dry && r.thief < 0 && r.kind != "finish" && (!victim || r.unit < victim->unit)) {
+        victim = &r;
+        v = static_cast<int>(k);
+      }
     }
-    idle_.pop_front();
+    if (!victim) return;
+    victim->thief = static_cast<int>(w);
+    waiting_[w] = 1;
+    ++figures_.steals;
+    wire_.send(v / slots_per_rank_, {0, {{"t", "steal"}, {"slot", v % slots_per_rank_}, {"unit", victim->unit}}, ""});
   }
 }
 
 void Process::coordinate(const Message& m) {
   const std::string t = m.head.at("t");
   if (t == "idle") {
-    idle_.push_back(worker_of(m));
+    // a slot has started: nothing to do but dispatch
   } else if (t == "beat") {
     boxes_[m.from] = m.head.at("boxes");
     const auto units = m.head.at("units").get<std::vector<long>>();
     const auto shares = m.head.at("shares").get<std::vector<int>>();
     for (int k = 0; k < slots_per_rank_; ++k) {
-      auto at = running_.find(m.from * slots_per_rank_ + k);
-      if (at != running_.end() && at->second.unit == units[k]) {
-        at->second.shares = shares[k];
-        at->second.dry = false;
+      auto& q = queue_[m.from * slots_per_rank_ + k];
+      if (!q.empty() && q.front().unit == units[k]) {
+        q.front().shares = shares[k];
+        q.front().dry = false;
       }
     }
     long total = 0;
@@ -361,12 +390,12 @@ void Process::coordinate(const Message& m) {
   } else if (t == "stopped") {
     stop(m.head.at("why"));
   } else if (t == "gift") {
-    Running& victim = running_.at(worker_of(m));
+    Running& victim = queue_[worker_of(m)].front();  // gifts come from the unit that runs
     const int thief = victim.thief;
     victim.thief = -1;
+    waiting_[thief] = 0;
     if (m.payload.empty()) {
       victim.dry = true;
-      idle_.push_front(thief);
     } else {
       Piece gift = piece_from(m);
       ++subs_[gift.subproblem].live;
@@ -375,9 +404,9 @@ void Process::coordinate(const Message& m) {
     }
   } else if (t == "done") {
     const int w = worker_of(m);
-    const Running r = running_.at(w);
-    running_.erase(w);
-    if (r.thief >= 0) idle_.push_front(r.thief);  // asked too late: the unit had ended
+    const Running r = queue_[w].front();
+    queue_[w].pop_front();
+    if (r.thief >= 0) waiting_[r.thief] = 0;  // asked too late: the unit had ended
     SubState& s = subs_[r.sub];
     if (m.head.at("whole").get<bool>()) {
       s.result = solve::sub_checkpoint_from_text(m.payload).result;
@@ -387,7 +416,6 @@ void Process::coordinate(const Message& m) {
       else s.merged = std::move(piece);
     }
     if (r.kind != "finish" && --s.live == 0 && s.merged) to_finish_.push_back(r.sub);
-    idle_.push_back(w);
   } else if (t == "error") {
     if (!failure_) failure_ = {m.head.at("code").get<int>(), m.head.at("text").get<std::string>()};
     quitting_ = true;
@@ -448,6 +476,8 @@ std::optional<solve::CaseResult> Process::run(Figures* figures) {
   if (root) {
     subs_.resize(f_.subproblem_count());
     boxes_.assign(world_.size(), 0);
+    queue_.resize(static_cast<size_t>(world_.size()) * slots_per_rank_);
+    waiting_.assign(queue_.size(), 0);
     gone_.assign(world_.size(), 0);
   }
   for (int k = 0; k < slots_per_rank_; ++k)
@@ -510,7 +540,11 @@ std::optional<solve::CaseResult> Process::run(Figures* figures) {
       last_line = now;
       progress_line();
     }
-    if (!active) std::this_thread::sleep_for(std::chrono::microseconds(500));
+    // MPI cannot wake a sleeping thread, so it polls; a slot's message wakes it at once.
+    if (!active) {
+      std::unique_lock lock(outbox_m_);
+      outbox_cv_.wait_for(lock, std::chrono::microseconds(500), [&] { return !outbox_.empty(); });
+    }
   }
   wire_.flush(timeout);
   if (failure_) {
