@@ -43,6 +43,8 @@ namespace {
 
 // Rank 0 hears from every rank (and every rank from rank 0) this often, so silence means death.
 constexpr double kBeat = 0.2;
+// Seconds before a search that had nothing to give is asked again.
+constexpr double kDryWait = 0.02;
 
 double fault_timeout() {
   const char* t = std::getenv("LINKBOX_MPI_TIMEOUT");
@@ -110,6 +112,7 @@ struct Slot {
   std::deque<Message> inbox;
   long unit = -1;                  // under m
   std::atomic<bool> steal{false};  // rank 0 asks for a box of `unit`
+  long steal_for = -1;             // under m: asked before the unit started
   std::atomic<bool> shares{false};  // `unit`'s search gives boxes (it does not race)
   std::thread thread;
 };
@@ -120,7 +123,7 @@ struct Running {
   size_t sub;
   std::string kind;
   bool shares = false;  // as the rank's last heartbeat said
-  bool dry = false;     // gave nothing when last asked (asked again after a heartbeat)
+  double dry_until = 0;  // gave nothing when last asked: not asked again before then (Budget::elapsed)
   int thief = -1;       // a slot waiting for a box of this unit
 };
 
@@ -199,7 +202,7 @@ class Process {
       {
         std::lock_guard lock(slot.m);
         slot.unit = unit;
-        slot.steal = false;
+        slot.steal = slot.steal_for == unit;
         slot.shares = false;
       }
       const std::string kind = m.head.at("kind");
@@ -306,7 +309,10 @@ class Process {
 void Process::send_unit(int worker, const std::string& kind, size_t sub, json extra, std::string payload) {
   json head = {{"t", "work"}, {"slot", worker % slots_per_rank_}, {"unit", next_unit_}, {"kind", kind}, {"sub", sub}};
   head.update(extra);
-  queue_[worker].push_back({next_unit_++, sub, kind});
+  // A subtree, or a sub-problem with one strategy named, never races: it shares from the start.
+  // Under "auto" the slot's heartbeat says whether the sub-problem raced.
+  const bool shares = kind == "tree" || (kind == "sub" && options_.strategy.contractors != std::vector<std::string>{"auto"});
+  queue_[worker].push_back({next_unit_++, sub, kind, shares});
   ++figures_.units;
   wire_.send(worker / slots_per_rank_, {0, head, std::move(payload)});
 }
@@ -348,6 +354,7 @@ void Process::dispatch() {
       }
     return;
   }
+  const double now = budget_.elapsed();
   for (size_t w = 0; w < workers; ++w) {
     if (!queue_[w].empty() || waiting_[w]) continue;
     // Ask the longest-running unit whose search shares: its tree has had the longest to grow.
@@ -356,7 +363,7 @@ void Process::dispatch() {
     for (size_t k = 0; k < workers; ++k) {
       if (queue_[k].empty()) continue;
       Running& r = queue_[k].front();
-      if (r.shares && !r.dry && r.thief < 0 && r.kind != "finish" && (!victim || r.unit < victim->unit)) {
+      if (r.shares && r.dry_until <= now && r.thief < 0 && r.kind != "finish" && (!victim || r.unit < victim->unit)) {
         victim = &r;
         v = static_cast<int>(k);
       }
@@ -380,8 +387,7 @@ void Process::coordinate(const Message& m) {
     for (int k = 0; k < slots_per_rank_; ++k) {
       auto& q = queue_[m.from * slots_per_rank_ + k];
       if (!q.empty() && q.front().unit == units[k]) {
-        q.front().shares = shares[k];
-        q.front().dry = false;
+        q.front().shares = q.front().shares || shares[k];
       }
     }
     long total = 0;
@@ -395,7 +401,9 @@ void Process::coordinate(const Message& m) {
     victim.thief = -1;
     waiting_[thief] = 0;
     if (m.payload.empty()) {
-      victim.dry = true;
+      // A search down to its last box has nothing to give now; soon it may. Asking again at
+      // once would flood rank 0 when every search is nearly done.
+      victim.dry_until = budget_.elapsed() + kDryWait;
     } else {
       Piece gift = piece_from(m);
       ++subs_[gift.subproblem].live;
@@ -442,7 +450,9 @@ void Process::handle(Message m) {
     if (t == "work") return deliver(k, std::move(m));
     Slot& s = *slots_.at(k);
     std::lock_guard lock(s.m);
-    if (s.unit == m.head.at("unit").get<long>()) s.steal.store(true);
+    const long unit = m.head.at("unit");
+    if (s.unit == unit) s.steal.store(true);
+    else s.steal_for = unit;  // queued behind the unit that runs: asked as soon as it starts
   } else if (t == "stop") {
     budget_.halt(m.head.at("why").get<std::string>().c_str());
     told_stop_ = true;

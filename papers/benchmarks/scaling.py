@@ -9,8 +9,7 @@ box, and a model of 64-1024 ranks that replays the search tree a run records.
 The model replays each recorded box with its measured time and the protocol of
 lib/distributed/mpi_solve.cpp: idle slots get sub-problems in index order, then the oldest
 pending box of the longest-running search that shares (answered at its next box boundary;
-a search with fewer than two pending boxes answers dry, and is asked again after the next
-heartbeat); a racing sub-problem is one unit. Rank 0 serves every message one at a time in
+a search with fewer than two pending boxes answers dry, and is not asked again for 20 ms); a racing sub-problem is one unit. Rank 0 serves every message one at a time in
 HANDLE seconds (measured), each hop takes HOP seconds, and every rank sends a heartbeat each
 BEAT seconds. Merging pieces and refinement are not in the record (they are small here)."""
 import argparse
@@ -38,6 +37,7 @@ CASES = [
 ]
 RANKS = [1, 2, 4]
 BEAT = 0.2
+DRY = 0.02  # kDryWait
 
 
 def mpirun(ranks):
@@ -100,8 +100,8 @@ def load_tree(path):
 
 
 class Model:
-    def __init__(self, units, slots, hop, handle):
-        self.units, self.slots, self.hop, self.handle = units, slots, hop, handle
+    def __init__(self, units, slots, hop, handle, auto):
+        self.units, self.slots, self.hop, self.handle, self.auto = units, slots, hop, handle, auto
         self.free = 0.0  # rank 0 busy until
         self.messages = 0
         # heartbeats take this share of rank 0 (each rank's beat in, rank 0's beat out)
@@ -123,7 +123,6 @@ class Model:
         seq = 0
         state = [None] * n  # per worker: dict(unit, kind, pending(list), started, dry_until)
         next_unit = 0
-        idle = []
         unit_id = 0
         busy_time = 0.0
 
@@ -138,27 +137,32 @@ class Model:
         thieves = {}  # victim -> thief
         while events:
             t, _, kind, w = heapq.heappop(events)
-            end = max(end, t)
-            if kind == "ask":  # w is idle and asks rank 0
-                t0 = self.serve(t)
+            if kind not in ("ask", "retry", "next"):  # an idle worker's request is not work
+                end = max(end, t)
+            if kind in ("ask", "retry", "next"):  # w is idle and asks rank 0 (or rank 0 tries again for it)
+                t0 = self.serve(t) if kind != "retry" else t
+                # sub-problems are queued at each slot in batches: the next one starts at once
+                begin = t if kind == "next" else t0 + hop
                 if next_unit < len(self.units):
                     k, data = self.units[next_unit]
                     next_unit += 1
                     unit_id += 1
                     self.messages += 1
                     if k == "race":
-                        state[w] = {"id": unit_id, "kind": k, "pending": [], "start": t0 + hop}
+                        state[w] = {"id": unit_id, "kind": k, "pending": [], "start": begin}
                         busy_time += data
-                        push(t0 + hop + data, "done", w)
+                        push(begin + data, "done", w)
                     else:
-                        state[w] = {"id": unit_id, "kind": k, "tree": data, "pending": [""], "start": t0 + hop,
-                                    "dry_until": 0, "asked": False}
-                        push(t0 + hop, "box", w)
+                        # under "auto" rank 0 learns from a heartbeat that the sub-problem shares
+                        state[w] = {"id": unit_id, "kind": k, "tree": data, "pending": [""], "start": begin,
+                                    "dry_until": 0, "asked": False, "auto": self.auto}
+                        push(begin, "box", w)
                 else:
                     victims = [v for v in range(n) if state[v] and state[v]["kind"] == "tree" and v not in thieves
-                               and t0 >= state[v]["start"] + BEAT and t0 >= state[v]["dry_until"]]
-                    if not victims:
-                        idle.append(w)
+                               and t0 >= state[v]["start"] + (BEAT if state[v]["auto"] else 0)
+                               and t0 >= state[v]["dry_until"]]
+                    if not victims:  # tried again at rank 0's next message (one arrives every hop or so)
+                        push(t0 + 2 * hop, "retry", w)
                         continue
                     v = min(victims, key=lambda v: state[v]["id"])
                     thieves[v] = w
@@ -175,11 +179,11 @@ class Model:
                         unit_id += 1
                         self.messages += 1
                         state[thief] = {"id": unit_id, "kind": "tree", "tree": s["tree"], "pending": [node],
-                                        "start": t1 + hop, "dry_until": 0, "asked": False}
+                                        "start": t1 + hop, "dry_until": 0, "asked": False, "auto": False}
                         push(t1 + hop, "box", thief)
                     else:
-                        s["dry_until"] = (int(t1 / BEAT) + 1) * BEAT
-                        push(max(t1, s["dry_until"]), "ask", thief)
+                        s["dry_until"] = t1 + DRY
+                        push(t1 + hop, "ask", thief)
                 if not s["pending"]:
                     push(t, "done", w)
                     continue
@@ -197,11 +201,7 @@ class Model:
                     if v == w:
                         del thieves[v]
                         push(t, "ask", thief)
-                push(t + hop, "ask", w)
-                # the idle ones ask again: there may be a victim now
-                waiting, idle[:] = idle[:], []
-                for x in waiting:
-                    push(t + hop, "ask", x)
+                push(t, "next", w) if next_unit < len(self.units) else push(t + hop, "ask", w)
             if next_unit >= len(self.units) and all(s is None for s in state) and not any(
                     e[2] in ("box", "done") for e in events):
                 break
@@ -227,7 +227,7 @@ def model(args):
             units = load_tree(rec)
             rows = []
             for p in [1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024]:
-                m = Model(units, p, args.hop, handle)
+                m = Model(units, p, args.hop, handle, "--prune" not in flags)
                 makespan, busy = m.run()
                 rows.append({"ranks": p, "makespan": makespan, "busy": busy, "messages": m.messages,
                              "rank0_load": m.messages * handle / makespan + m.beat_load})
