@@ -209,7 +209,12 @@ class Process {
       const size_t i = m.head.at("sub");
       Message done{0, {{"t", "done"}, {"slot", k}, {"unit", unit}, {"sub", i}}, ""};
       try {
-        if (kind == "finish") {
+        if (kind == "sub" && budget_.exhausted()) {
+          // Queued here when the run stopped: reported as one process reports a sub-problem
+          // it never reached, without building its strategy.
+          done.payload = result_text(solve::unstarted_subproblem(f_, i));
+          done.head["whole"] = true;
+        } else if (kind == "finish") {
           done.payload = result_text(solve::finish_subproblem(f_, i, unit_options_, budget_, piece_from(m)));
           done.head["whole"] = true;
         } else {
