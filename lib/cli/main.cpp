@@ -1,7 +1,7 @@
 // The `linkbox` executable: arguments -> options -> load -> solve -> verify -> report.
 // Exit codes: 0 success, 1 internal failure or a failed check, 2 bad input (case file or
 // arguments), 128 + the signal (130 SIGINT, 143 SIGTERM) when interrupted: what was found is
-// still written.
+// still written; under mpirun, 3 when a rank died or an MPI error ended the run.
 #include "formulate/load.hpp"
 #include "input/to_toml.hpp"
 #include "report/json.hpp"
@@ -10,6 +10,10 @@
 #include "solve/solve_case.hpp"
 #include "verify/certify_case.hpp"
 #include "verify/check.hpp"
+
+#ifdef LINKBOX_MPI
+#include "distributed/mpi_solve.hpp"
+#endif
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -23,11 +27,33 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
+#include <sstream>
 #include <unistd.h>
 
 using namespace linkbox;
 
 namespace {
+
+#ifdef LINKBOX_MPI
+// Started when mpirun launched this process (distributed/wire.hpp).
+std::optional<distributed::World> world;
+#endif
+bool distributed_run() {
+#ifdef LINKBOX_MPI
+  return world && world->size() > 1;
+#else
+  return false;
+#endif
+}
+// Under mpirun only rank 0 prints (the summary, errors); the others work silently.
+bool speaks() {
+#ifdef LINKBOX_MPI
+  return !world || world->rank() == 0;
+#else
+  return true;
+#endif
+}
 
 // ---- interrupts: the first stops the search at the next box, the second skips verification.
 
@@ -56,7 +82,7 @@ void catch_interrupts() {
 // ---- commands
 
 struct SolveCommand {
-  std::string case_file, json_out, prune, checkpoint;
+  std::string case_file, json_out, prune, checkpoint, record_tree;
   solve::RunOptions options;
   bool quiet = false, no_verify = false;
   std::string resume;  // resume: the checkpoint to go on from
@@ -152,12 +178,40 @@ void resume_settings(SolveCommand& cmd, const nlohmann::json& saved) {
     throw std::invalid_argument("the checkpoint's settings " + saved.dump() + " are not understood by this linkbox");
 }
 
+// A search's result to the summary and the JSON, then verification. `extra` goes into the JSON.
+int report_and_verify(const SolveCommand& cmd, const formulate::LoadedCase& c, const solve::CaseResult& r,
+                      const nlohmann::json& extra) {
+  const solve::RunOptions& o = cmd.options;
+  report::print_summary(stdout, c, o, r);
+  nlohmann::json j = report::result_json(c.name, c.file, *c.formulation, o, r);
+  j.update(extra);
+  // mpirun answers an interrupt with SIGTERM to every rank and SIGKILL a second later: the
+  // search's result is on disk before verification starts, and replaced once it is verified.
+  if (distributed_run() && interrupts.load() && !cmd.json_out.empty())
+    solve::write_atomically(cmd.json_out, j.dump(1) + '\n');
+  if (!cmd.no_verify && interrupts.load() < 2) {
+    verify::VerifyOptions vo;
+    vo.skip_rest = [] { return interrupts.load() >= 2; };
+    const verify::VerifyReport v = verify::verify_case(*c.formulation, r, vo);
+    report::print_verification(stdout, c, v);
+    report::add_verification(j, *c.formulation, v);
+  }
+  if (!cmd.json_out.empty()) solve::write_atomically(cmd.json_out, j.dump(1) + '\n');
+  std::fflush(stdout);
+  return interrupts.load() ? 128 + last_signal : 0;
+}
+
 int run_solve(SolveCommand& cmd) {
   solve::RunOptions& o = cmd.options;
   o.progress = !cmd.quiet;
   o.params.interrupt = &interrupts;
-  check_writable(cmd.json_out, "--json");
-  check_writable(cmd.checkpoint, "--checkpoint");
+  if (distributed_run() && (!cmd.checkpoint.empty() || !cmd.resume.empty() || !cmd.record_tree.empty()))
+    throw std::invalid_argument("checkpoints (--checkpoint, resume) and --record-tree are for runs of one process, not under mpirun");
+  if (speaks()) {
+    check_writable(cmd.json_out, "--json");
+    check_writable(cmd.checkpoint, "--checkpoint");
+    check_writable(cmd.record_tree, "--record-tree");
+  }
 
   std::optional<solve::Checkpoint> saved;
   nlohmann::json header;
@@ -187,19 +241,28 @@ int run_solve(SolveCommand& cmd) {
   }
   if (interrupts.load()) return 128 + last_signal;  // before any work: nothing to keep
 
-  const solve::CaseResult r = solve::solve_case(*c.formulation, o);
-  report::print_summary(stdout, c, o, r);
-  nlohmann::json j = report::result_json(c.name, c.file, *c.formulation, o, r);
-  if (!cmd.no_verify && interrupts.load() < 2) {
-    verify::VerifyOptions vo;
-    vo.skip_rest = [] { return interrupts.load() >= 2; };
-    const verify::VerifyReport v = verify::verify_case(*c.formulation, r, vo);
-    report::print_verification(stdout, c, v);
-    report::add_verification(j, *c.formulation, v);
+#ifdef LINKBOX_MPI
+  if (distributed_run()) {
+    distributed::Figures figures;
+    const auto r = distributed::solve_distributed(*c.formulation, o, *world, &figures);
+    if (!r) return interrupts.load() ? 128 + last_signal : 0;  // a worker: rank 0 reports
+    return report_and_verify(cmd, c, *r, {{"distributed", figures.json()}});
   }
-  if (!cmd.json_out.empty()) solve::write_atomically(cmd.json_out, j.dump(1) + '\n');
-  std::fflush(stdout);
-  return interrupts.load() ? 128 + last_signal : 0;
+#endif
+  solve::BoxLog log;
+  if (!cmd.record_tree.empty()) o.box_log = &log;
+  const solve::CaseResult r = solve::solve_case(*c.formulation, o);
+  if (!cmd.record_tree.empty()) {
+    std::string csv = "subproblem,candidate,path,outcome,seconds\n";
+    for (auto& e : log.take()) {
+      char seconds[32];
+      std::snprintf(seconds, sizeof seconds, "%.4g", e.seconds);
+      csv += std::to_string(e.subproblem) + ',' + std::to_string(e.candidate) + ',' + e.path + ',' + e.outcome + ',' +
+             seconds + '\n';
+    }
+    solve::write_atomically(cmd.record_tree, csv);
+  }
+  return report_and_verify(cmd, c, r, nlohmann::json::object());
 }
 
 int run_check(const CheckCommand& cmd) {
@@ -283,6 +346,9 @@ void add_run_options(CLI::App& cmd, SolveCommand& s) {
   cmd.add_option("--checkpoint-every", o.checkpoint_every, "seconds between checkpoints (default 60)")
       ->check(number(0, true));
   cmd.add_flag("--quiet", s.quiet, "no progress on stderr");
+  cmd.add_option("--record-tree", s.record_tree,
+                 "write every processed box (sub-problem, raced candidate, path, outcome, seconds) as CSV: the "
+                 "search tree that papers/benchmarks/scaling.py replays");
   cmd.add_flag("--no-verify", s.no_verify, "skip clustering and certification");
 }
 
@@ -299,6 +365,9 @@ void single_threaded_blas(char** argv) {
 
 int main(int argc, char** argv) {
   single_threaded_blas(argv);
+#ifdef LINKBOX_MPI
+  if (distributed::World::launched()) world.emplace(&argc, &argv);
+#endif
   CLI::App app{"linkbox: verified position analysis of linkages by interval branch-and-prune"};
   app.set_version_flag("--version", "linkbox " LINKBOX_VERSION);
   app.require_subcommand(1);
@@ -345,7 +414,8 @@ An unsupported construct is an error naming file:line (exit 2), never a change o
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
+    std::ostringstream silent;
+    int code = speaks() ? app.exit(e) : app.exit(e, silent, silent);
     return code == 0 ? 0 : 2;
   }
   try {
@@ -358,13 +428,20 @@ An unsupported construct is an error naming file:line (exit 2), never a change o
       return 0;
     }
   } catch (const input::InputError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    if (speaks()) std::fprintf(stderr, "%s\n", e.what());
     return 2;
   } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "linkbox: %s\n", e.what());
+    if (speaks()) std::fprintf(stderr, "linkbox: %s\n", e.what());
     return 2;
+#ifdef LINKBOX_MPI
+  } catch (const distributed::Failed& e) {  // from another rank's search, worded as the CLI words it
+    std::fprintf(stderr, "%s\n", e.what());
+    return e.code;
+  } catch (const distributed::Ended& e) {
+    return e.code;
+#endif
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "linkbox: internal error: %s\n", e.what());
+    if (speaks()) std::fprintf(stderr, "linkbox: internal error: %s\n", e.what());
     return 1;
   }
   return 0;

@@ -65,6 +65,8 @@ Interval acos(const Interval& x) {
   return apply(x, mpfi_acos);
 }
 Interval atan(const Interval& x) { return apply(x, mpfi_atan); }
+void release_thread_caches() { mpfr_free_cache2(MPFR_FREE_LOCAL_CACHE); }
+
 Interval atan2(const Interval& y, const Interval& x) {
   Mp a(y), b(x), r;
   mpfi_atan2(r.v, a.v, b.v);

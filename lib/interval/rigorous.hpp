@@ -30,4 +30,8 @@ Interval log(const Interval& x);   // throws std::domain_error for x <= 0
 // `half_turns` * pi: phi = 2 atan(t) + half_turns * pi.
 Interval angle_from_half_tangent(const Interval& t, int half_turns);
 
+// MPFR keeps per-thread caches (constants, arctangent tables) that a thread's exit does not
+// free: a thread that used these functions calls this before it ends.
+void release_thread_caches();
+
 }  // namespace linkbox::rigorous

@@ -126,6 +126,9 @@ struct Search::State {
   bool paused = false;  // the last run() returned on a pause request
   std::atomic<long>* tally_pending = nullptr;
   std::atomic<double>* tally_done = nullptr;
+  BoxLog* log = nullptr;
+  size_t log_subproblem = 0;
+  int log_candidate = 0;
 };
 
 Search::Search(const Box& start, prune::Sequence& contractor, std::vector<int> split_dims, const Params& params,
@@ -148,6 +151,12 @@ void Search::pause_when(std::function<bool()> request) { s_->pause_request = std
 void Search::report_to(std::atomic<long>* pending, std::atomic<double>* fraction_done) {
   s_->tally_pending = pending;
   s_->tally_done = fraction_done;
+}
+
+void Search::log_to(BoxLog* log, size_t subproblem, int candidate) {
+  s_->log = log;
+  s_->log_subproblem = subproblem;
+  s_->log_candidate = candidate;
 }
 
 SearchState Search::state() const {
@@ -220,7 +229,12 @@ bool Search::run(int threads, double work_limit) {
       stats.processed++;
       const double volume = volume_ratio(st.start, node.box, st.split_dims);
       const long lps = lps_of(c);
+      const auto shrink_start = st.log ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
       const Verdict v = shrink(node.box, node.backoff, c, certify, st.split_dims, params, cut, stop, stats);
+      if (st.log && v != Verdict::stopped)
+        st.log->add({st.log_subproblem, st.log_candidate, node.path,
+                     v == Verdict::empty ? 'e' : v == Verdict::split ? 'x' : 's',
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - shrink_start).count()});
       const double work = 1 + kLpWork * static_cast<double>(lps_of(c) - lps) + (v == Verdict::solution ? kSolutionWork : 0);
       std::pair<Node, Node> halves;
       if (v == Verdict::stopped) {

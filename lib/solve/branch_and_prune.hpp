@@ -12,6 +12,7 @@
 #include <functional>
 #include <span>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,8 @@ class Budget {
   // Between the costly steps of one box (the LPs of a relaxation): reads the clock and the
   // interrupt, so a limit is honoured within one LP, not one box.
   bool stop_now();
+  // Stops the run from outside (another process reached a limit): as if it had been reached here.
+  void halt(const char* why) { stop(why); }
   bool exhausted() const { return exhausted_.load(std::memory_order_relaxed); }
   const std::string& reason() const { return reason_; }
   long boxes_taken() const { return taken_.load(); }
@@ -91,6 +94,32 @@ struct Result {
   double volume_left = 0;    // their share of the start box's volume (split dimensions)
 };
 
+// Every box the searches of a run process, to replay the run (papers/benchmarks/scaling.py
+// models distributed runs from it: the tree, and what each box cost). Costs two clock reads per
+// box when a search logs to one.
+class BoxLog {
+ public:
+  struct Entry {
+    size_t subproblem;
+    int candidate;     // which raced strategy (0 when one ran)
+    std::string path;  // the box's place in the search tree
+    char outcome;      // 'e' empty, 's' solution, 'x' split
+    double seconds;
+  };
+  void add(Entry e) {
+    std::lock_guard lock(m_);
+    entries_.push_back(std::move(e));
+  }
+  std::vector<Entry> take() {
+    std::lock_guard lock(m_);
+    return std::move(entries_);
+  }
+
+ private:
+  std::mutex m_;
+  std::vector<Entry> entries_;
+};
+
 // A search that can be paused and resumed: run() processes boxes until the search is done,
 // the budget runs out, or `work` (boxes processed + kLpWork per LP solved) reaches a limit.
 // Between calls, the pending boxes are kept. Pausing at a work limit is deterministic with
@@ -115,6 +144,7 @@ class Search {
   // Live figures for a progress line, stored after every box: pending boxes and the share of
   // the volume outside them.
   void report_to(std::atomic<long>* pending, std::atomic<double>* fraction_done);
+  void log_to(BoxLog* log, size_t subproblem, int candidate);
   SearchState state() const;  // between runs
   void set_state(SearchState state);
   Result result();  // once run() returned true

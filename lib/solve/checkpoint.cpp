@@ -66,7 +66,12 @@ Stats stats_in(const json& j) {
 
 json counters_out(const std::vector<prune::Counters>& cs) {
   json j = json::array();
-  for (auto& c : cs) j.push_back({c.calls, c.emptied, num(c.seconds), num(c.volume_removed), c.lps_solved, c.lp_iterations});
+  for (auto& c : cs) {
+    json x = {c.calls, c.emptied, num(c.seconds), num(c.volume_removed), c.lps_solved, c.lp_iterations};
+    if (c.lp_paths.any())
+      x.push_back({c.lp_paths.basis, c.lp_paths.repaired, c.lp_paths.farkas, c.lp_paths.fallback, c.lp_paths.pivots});
+    j.push_back(x);
+  }
   return j;
 }
 std::vector<prune::Counters> counters_in(const json& j) {
@@ -79,6 +84,10 @@ std::vector<prune::Counters> counters_in(const json& j) {
     c.volume_removed = num(x.at(3));
     c.lps_solved = x.at(4);
     c.lp_iterations = x.at(5);
+    if (x.size() > 6) {
+      const json& p = x.at(6);
+      c.lp_paths = {p.at(0).get<long>(), p.at(1).get<long>(), p.at(2).get<long>(), p.at(3).get<long>(), p.at(4).get<long>()};
+    }
     cs.push_back(c);
   }
   return cs;
@@ -201,6 +210,14 @@ std::string to_json_text(const SubCheckpoint& s) {
                  {"target", num(s.race.target)}, {"winner", s.race.winner}};
   }
   return j.dump();
+}
+
+SubCheckpoint sub_checkpoint_from_text(const std::string& text) {
+  try {
+    return sub_in(json::parse(text));
+  } catch (const json::exception& e) {
+    throw std::invalid_argument(std::string("a damaged sub-problem state: ") + e.what());
+  }
 }
 
 std::string checkpoint_text(const std::string& header, const std::vector<std::string>& subproblems) {

@@ -42,6 +42,9 @@ struct Checkpoint {
 // checkpoint from such pieces.
 std::string to_json_text(const SubCheckpoint& s);
 std::string checkpoint_text(const std::string& header, const std::vector<std::string>& subproblems);
+// The reverse of to_json_text (distributed/ sends sub-problem states between processes as such
+// text). Throws std::invalid_argument.
+SubCheckpoint sub_checkpoint_from_text(const std::string& text);
 
 // Writes `text` to `path` through a temporary file beside it and a rename, so a crash
 // mid-write leaves the previous file whole. Throws std::runtime_error.

@@ -1,6 +1,7 @@
 #include "solve/solve_case.hpp"
 
 #include "solve/checkpoint.hpp"
+#include "solve/share.hpp"
 
 #include <condition_variable>
 #include <cstdio>
@@ -290,15 +291,61 @@ struct Shared {
   Budget& budget;
   Checkpointer& checkpoints;
   int threads;  // inside the sub-problem
+  Sharing* sharing = nullptr;
 };
 
-void solve_subproblem(const formulate::Formulation& formulation, size_t i, const formulate::SubProblem& sub,
-                      const SubCheckpoint* resume, Shared& run, Tally& tally, SubResult& s) {
-  const RunOptions& options = run.options;
+std::unique_ptr<Racer> make_racer(const formulate::Formulation& formulation, size_t i, const formulate::SubProblem& sub,
+                                  StrategyOptions strategy, const std::vector<std::string>& names) {
+  strategy.contractors = names;
+  return std::unique_ptr<Racer>(new Racer{make_strategy(strategy, sub), NaturalCertifier(formulation, i), nullptr});
+}
+
+StrategyOptions strategy_options(const RunOptions& options) {
   StrategyOptions strategy = options.strategy;
   strategy.stall = rho_for(options.params.rho, true);  // the LP stage waits for a stall as in the paper
-  Params params = options.params;
-  params.rho = rho_for(options.params.rho, sub.clipping);
+  return strategy;
+}
+
+// The search settings of one sub-problem: rho resolved (rho_for).
+Params params_for(const RunOptions& options, const formulate::SubProblem& sub) {
+  Params p = options.params;
+  p.rho = rho_for(options.params.rho, sub.clipping);
+  return p;
+}
+
+// A sub-problem's result from its search's (or merged searches') result: refined when complete
+// and Newton can certify, residuals, the strategy's counters.
+void finish(const formulate::SubProblem& sub, const Params& params, Budget& budget, Racer& ran,
+            const Bisector& bisector, Result r, double work, SubResult& s) {
+  s.strategy = ran.strategy.names;
+  s.complete = r.complete;
+  s.rho = params.rho;
+  // Only Newton tells the certifier where to look; without it a refinement cannot certify.
+  const auto& names = ran.strategy.names;
+  if (r.complete && std::find(names.begin(), names.end(), "newton") != names.end())
+    refine(r, work, sub, params, budget, *ran.strategy.sequence, ran.certifier, bisector);
+  s.solutions = std::move(r.solutions);
+  s.certified = std::move(r.certified);
+  for (auto& b : s.solutions) s.residuals.push_back(model::residual_bound(sub.system.equations, b));
+  s.stats = r.stats;
+  s.pending = std::move(r.pending);
+  s.volume_left = r.volume_left;
+  s.counters = ran.strategy.sequence->counters();
+}
+
+void describe(const formulate::SubProblem& sub, size_t i, SubResult& s) {
+  s.index = i;
+  s.label = sub.label;
+  s.equations = static_cast<int>(sub.system.equations.size());
+  s.variables = static_cast<int>(sub.system.variables.size());
+}
+
+// Returns false (and fills `piece`) when `run.sharing` took some of its boxes: see share.hpp.
+bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const formulate::SubProblem& sub,
+                      const SubCheckpoint* resume, Shared& run, Tally& tally, SubResult& s, Piece* piece) {
+  const RunOptions& options = run.options;
+  const StrategyOptions strategy = strategy_options(options);
+  const Params params = params_for(options, sub);
   s.rho = params.rho;
   std::vector<std::vector<std::string>> candidates{strategy.contractors};
   if (strategy.contractors == std::vector<std::string>{"auto"}) candidates = auto_candidates(sub);
@@ -306,11 +353,11 @@ void solve_subproblem(const formulate::Formulation& formulation, size_t i, const
   s.bisect = to_string(bisector.rule());
   std::vector<std::unique_ptr<Racer>> racers;
   for (auto& names : candidates) {
-    strategy.contractors = names;
-    auto r = std::unique_ptr<Racer>(new Racer{make_strategy(strategy, sub), NaturalCertifier(formulation, i), nullptr});
+    auto r = make_racer(formulation, i, sub, strategy, names);
     r->search = std::make_unique<Search>(sub.system.domain(), *r->strategy.sequence, sub.split_dims, params,
                                          run.budget, &r->certifier, &bisector);
     r->search->report_to(&tally.pending, &tally.done);
+    if (options.box_log) r->search->log_to(options.box_log, i, static_cast<int>(racers.size()));
     racers.push_back(std::move(r));
   }
 
@@ -339,8 +386,14 @@ void solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     seen = run.checkpoints.generation();
     run.checkpoints.deposit(i, c, running);
   };
-  if (run.checkpoints.enabled())
-    for (auto& r : racers) r->search->pause_when([&] { return run.checkpoints.generation() > seen; });
+  // Only a search that does not race gives boxes away.
+  Sharing* sharing = racers.size() == 1 ? run.sharing : nullptr;
+  bool gave = false;
+  if (run.checkpoints.enabled() || sharing)
+    for (auto& r : racers)
+      r->search->pause_when([&] {
+        return (run.checkpoints.enabled() && run.checkpoints.generation() > seen) || (sharing && sharing->asked());
+      });
   save(true);
 
   // The race (one candidate: its search). Each step runs one candidate up to its target; a
@@ -370,6 +423,7 @@ void solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     }
     if (run.budget.exhausted()) break;
     if (search.paused()) {
+      if (sharing && sharing->asked()) gave = sharing->give(i, racers[0]->strategy.names, search) || gave;
       save(true);
       continue;
     }
@@ -380,51 +434,33 @@ void solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     }
   }
 
+  // Stopped by a limit: what the most advanced candidate has, and the state to resume from.
+  size_t best = 0;
   if (race.winner < 0) {
-    // Stopped by a limit: what the most advanced candidate has, and the state to resume from.
     save(false);
-    size_t best = 0;
     for (size_t k = 1; k < racers.size(); ++k)
       if (racers[k]->search->fraction_done() > racers[best]->search->fraction_done()) best = k;
-    Racer& r = *racers[best];
-    Result part = r.search->result();
-    s.strategy = r.strategy.names;
-    s.solutions = std::move(part.solutions);
-    s.certified = std::move(part.certified);
-    for (auto& b : s.solutions) s.residuals.push_back(model::residual_bound(sub.system.equations, b));
-    s.stats = part.stats;
-    s.complete = false;
-    s.pending = std::move(part.pending);
-    s.volume_left = part.volume_left;
-    s.counters = r.strategy.sequence->counters();
-    return;
+  } else {
+    best = static_cast<size_t>(race.winner);
+    save(false);  // a checkpoint meanwhile resumes with the refinement
+    for (auto& r : racers)
+      if (r.get() != racers[best].get()) s.race.push_back({strategy_name(r->strategy.names), r->search->work()});
+    if (racers.size() > 1) s.race.push_back({strategy_name(racers[best]->strategy.names), racers[best]->search->work()});
   }
-  Racer* winner = racers[race.winner].get();
-  save(false);  // a checkpoint meanwhile resumes with the refinement
-  for (auto& r : racers)
-    if (r.get() != winner) s.race.push_back({strategy_name(r->strategy.names), r->search->work()});
-  if (racers.size() > 1) s.race.push_back({strategy_name(winner->strategy.names), winner->search->work()});
-
-  s.strategy = winner->strategy.names;
-  Result r = winner->search->result();
-  // Only Newton tells the certifier where to look; without it a refinement cannot certify.
-  const auto& names = winner->strategy.names;
-  if (std::find(names.begin(), names.end(), "newton") != names.end())
-    refine(r, winner->search->work(), sub, params, run.budget, *winner->strategy.sequence, winner->certifier,
-           bisector);
-  s.solutions = std::move(r.solutions);
-  s.certified = std::move(r.certified);
-  for (auto& b : s.solutions) s.residuals.push_back(model::residual_bound(sub.system.equations, b));
-  s.stats = r.stats;
-  s.complete = true;
-  s.counters = winner->strategy.sequence->counters();
+  Racer& ran = *racers[best];
+  if (gave) {
+    *piece = {i, ran.strategy.names, ran.search->state(), ran.strategy.sequence->counters(), s.race};
+    return false;
+  }
+  finish(sub, params, run.budget, ran, bisector, ran.search->result(), ran.search->work(), s);
   // A refinement cut short by a limit is done again on resuming; a whole one is final.
-  if (!run.budget.exhausted()) {
+  if (s.complete && !run.budget.exhausted()) {
     SubCheckpoint done;
     done.phase = SubCheckpoint::Phase::finished;
     done.result = s;
     run.checkpoints.deposit(i, done, false);
   }
+  return true;
 }
 
 }  // namespace
@@ -455,20 +491,13 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
         if (resume && resume->phase == SubCheckpoint::Phase::finished) {
           s = resume->result;
           checkpoints.deposit(i, *resume, false);
+        } else if (budget.exhausted()) {
+          s = unstarted_subproblem(formulation, i);
+          if (resume) checkpoints.deposit(i, *resume, false);
         } else {
-          formulate::SubProblem sub = formulation.subproblem(i);
-          s.index = i;
-          s.label = sub.label;
-          s.equations = static_cast<int>(sub.system.equations.size());
-          s.variables = static_cast<int>(sub.system.variables.size());
-          if (budget.exhausted()) {
-            s.complete = false;
-            s.volume_left = 1;
-            s.pending = {sub.system.domain()};
-            if (resume) checkpoints.deposit(i, *resume, false);
-          } else {
-            solve_subproblem(formulation, i, sub, resume, shared, tallies[i], s);
-          }
+          const formulate::SubProblem sub = formulation.subproblem(i);
+          describe(sub, i, s);
+          solve_subproblem(formulation, i, sub, resume, shared, tallies[i], s, nullptr);
         }
       } catch (...) {
         std::lock_guard lock(error_mutex);
@@ -488,6 +517,13 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
   if (error) std::rethrow_exception(error);
   checkpoints.final_write();
 
+  summarise(result, options, budget);
+  result.cpu_seconds = process_cpu_seconds() - cpu_start;
+  return result;
+}
+
+void summarise(CaseResult& result, const RunOptions& options, const Budget& budget) {
+  const size_t n = result.subproblems.size();
   for (auto& s : result.subproblems) {
     result.total += s.stats;
     result.complete = result.complete && s.complete;
@@ -518,8 +554,85 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
   result.rigorous = options.strategy.arith == Arith::verified;
   if (!result.complete) result.stop_reason = budget.reason();
   result.seconds = budget.elapsed();
-  result.cpu_seconds = process_cpu_seconds() - cpu_start;
-  return result;
+}
+
+void Piece::merge(Piece&& o) {
+  for (auto& n : o.state.pending) state.pending.push_back(std::move(n));
+  for (auto& f : o.state.solutions) state.solutions.push_back(std::move(f));
+  state.stats += o.state.stats;
+  state.work += o.state.work;
+  state.volume_done += o.state.volume_done;
+  if (counters.empty()) counters.resize(o.counters.size());
+  for (size_t k = 0; k < o.counters.size() && k < counters.size(); ++k) counters[k] += o.counters[k];
+  if (race.empty()) race = std::move(o.race);
+  if (strategy.empty()) strategy = std::move(o.strategy);
+}
+
+bool run_subproblem(const formulate::Formulation& formulation, size_t i, const RunOptions& options, Budget& budget,
+                    Sharing* sharing, SubResult& s, Piece& piece) {
+  const formulate::SubProblem sub = formulation.subproblem(i);
+  describe(sub, i, s);
+  RunOptions quiet = options;
+  quiet.checkpoint.clear();
+  Checkpointer none(quiet, 0);
+  Shared shared{options, budget, none, options.threads, sharing};
+  Tally tally;
+  return solve_subproblem(formulation, i, sub, nullptr, shared, tally, s, &piece);
+}
+
+namespace {
+
+// A search of sub-problem i with a strategy another process chose, over `state`'s boxes.
+struct Resumed {
+  Resumed(const formulate::Formulation& formulation, size_t i, const RunOptions& options, Budget& budget,
+          const std::vector<std::string>& names, SearchState state)
+      : sub(formulation.subproblem(i)),
+        bisector(options.bisect, sub, options.params.sigma),
+        ran(make_racer(formulation, i, sub, strategy_options(options), names)),
+        search(sub.system.domain(), *ran->strategy.sequence, sub.split_dims, params_for(options, sub), budget,
+               &ran->certifier, &bisector) {
+    search.set_state(std::move(state));
+  }
+  formulate::SubProblem sub;
+  Bisector bisector;
+  std::unique_ptr<Racer> ran;
+  Search search;
+};
+
+}  // namespace
+
+Piece run_subtree(const formulate::Formulation& formulation, size_t i, const RunOptions& options, Budget& budget,
+                  Sharing* sharing, std::vector<std::string> strategy, std::vector<SearchState::Node> nodes) {
+  SearchState start;
+  start.pending = std::move(nodes);
+  Resumed r(formulation, i, options, budget, strategy, std::move(start));
+  if (sharing) r.search.pause_when([sharing] { return sharing->asked(); });
+  while (!r.search.run(options.threads))
+    if (r.search.paused()) sharing->give(i, strategy, r.search);
+  return {i, std::move(strategy), r.search.state(), r.ran->strategy.sequence->counters(), {}};
+}
+
+SubResult finish_subproblem(const formulate::Formulation& formulation, size_t i, const RunOptions& options,
+                            Budget& budget, Piece merged) {
+  Resumed r(formulation, i, options, budget, merged.strategy, std::move(merged.state));
+  r.ran->strategy.sequence->set_counters(merged.counters);
+  SubResult s;
+  describe(r.sub, i, s);
+  s.bisect = to_string(r.bisector.rule());
+  s.race = std::move(merged.race);
+  const double work = r.search.work();
+  finish(r.sub, params_for(options, r.sub), budget, *r.ran, r.bisector, r.search.result(), work, s);
+  return s;
+}
+
+SubResult unstarted_subproblem(const formulate::Formulation& formulation, size_t i) {
+  const formulate::SubProblem sub = formulation.subproblem(i);
+  SubResult s;
+  describe(sub, i, s);
+  s.complete = false;
+  s.volume_left = 1;
+  s.pending = {sub.system.domain()};
+  return s;
 }
 
 }  // namespace linkbox::solve

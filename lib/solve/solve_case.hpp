@@ -25,6 +25,7 @@ struct RunOptions {
   // `checkpoint_every` seconds and when the run ends. `checkpoint_header` is a JSON object's
   // text saying what the run is (its case and settings), compared when resuming.
   std::string checkpoint;
+  BoxLog* box_log = nullptr;  // every processed box, when set (`--record-tree`)
   double checkpoint_every = 60;
   std::string checkpoint_header = "{}";
   const Checkpoint* resume = nullptr;  // go on from this state (its settings must be these)

@@ -1,0 +1,78 @@
+#pragma once
+// The MPI job a process belongs to, and the messages its processes exchange. Only the main
+// thread calls MPI (MPI_THREAD_FUNNELED): search threads hand their messages to it. Errors come
+// back as codes (MPI_ERRORS_RETURN) and end the job with a message, never a hang; a peer that
+// stays silent past a timeout is a fault too (the caller decides when, see Wire::heard).
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace linkbox::distributed {
+
+// Exit code of a run ended by a fault (a rank dead or silent, an MPI error).
+constexpr int kFaultExit = 3;
+
+class World {
+ public:
+  // Whether mpirun (or another launcher) started this process: only then is MPI started, so a
+  // plain `linkbox` never pays for it.
+  static bool launched();
+  World(int* argc, char*** argv);
+  ~World();  // MPI_Finalize
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  // Prints "linkbox: <why>" and ends every process of the job with kFaultExit.
+  [[noreturn]] void fail(const std::string& why) const;
+
+ private:
+  int rank_ = 0;
+  int size_ = 1;
+};
+
+// A message: a small JSON head (its type under "t") and an optional payload (a sub-problem
+// state as solve/checkpoint.hpp writes it).
+struct Message {
+  int from = 0;
+  nlohmann::json head;
+  std::string payload;
+};
+
+struct Traffic {
+  long messages = 0;
+  long bytes = 0;
+  long beats = 0;  // of the messages: heartbeats (time-driven, not per box)
+  long beat_bytes = 0;
+};
+
+class Wire {
+ public:
+  explicit Wire(const World& world);
+  ~Wire();
+  // To another rank through MPI; to this rank straight into its own inbox.
+  void send(int to, Message m);
+  // The next message that arrived, if any.
+  std::optional<Message> receive();
+  // Completes the sends under way (before MPI_Finalize), failing after `seconds`.
+  void flush(double seconds);
+  // Seconds since `rank` was last heard from.
+  double silent(int rank) const;
+  const Traffic& traffic() const { return traffic_; }
+
+ private:
+  struct Sending;
+  const World& world_;
+  std::deque<Message> local_;
+  std::vector<std::unique_ptr<Sending>> sending_;
+  std::vector<std::chrono::steady_clock::time_point> heard_;
+  Traffic traffic_;
+  void progress();
+};
+
+}  // namespace linkbox::distributed

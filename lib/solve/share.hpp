@@ -1,0 +1,62 @@
+#pragma once
+// The sub-problem search of solve_case, cut into the steps a driver that spreads one run over
+// several processes (distributed/) hands out: a whole sub-problem, a subtree of one (pending
+// boxes another search gave away, with their places in the tree and their LP backoff), and the
+// finish of a sub-problem from the pieces its searches left. Every box is processed as one
+// process would, so the merged pieces end as the unbroken search does.
+#include "solve/branch_and_prune.hpp"
+#include "solve/solve_case.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace linkbox::solve {
+
+// What one process's search of a sub-problem (or of a subtree of it) left: solution boxes with
+// their paths, counts and work, and the boxes still pending when a limit stopped it.
+struct Piece {
+  size_t subproblem = 0;
+  std::vector<std::string> strategy;  // the candidate that ran ("auto" resolved; after a race its winner)
+  SearchState state;
+  std::vector<prune::Counters> counters;
+  std::vector<std::pair<std::string, double>> race;  // as SubResult::race (the whole sub-problem's)
+  // Adds another piece of the same sub-problem and strategy: solutions, counts, work, pending.
+  void merge(Piece&& other);
+};
+
+// Asked between two boxes of a search that is not racing (a race decides by the order in which
+// one process meets the boxes, so its searches stay whole).
+class Sharing {
+ public:
+  virtual ~Sharing() = default;
+  virtual bool asked() = 0;  // before every box, cheap: true pauses the search for give()
+  // The paused search's pending boxes may be taken (Search::state / set_state), or none: true
+  // when some were.
+  virtual bool give(size_t subproblem, const std::vector<std::string>& strategy, Search& search) = 0;
+};
+
+// Runs sub-problem i as solve_case does (its race when "auto" has several candidates).
+// Returns true with `s` filled when it ended here (finished, or stopped by a limit before any of
+// its boxes went elsewhere); false with `piece` filled when some boxes were given away: the
+// sub-problem is finished (finish_subproblem) once every piece is back.
+bool run_subproblem(const formulate::Formulation& formulation, size_t i, const RunOptions& options, Budget& budget,
+                    Sharing* sharing, SubResult& s, Piece& piece);
+
+// Searches pending boxes of sub-problem i (a subtree given away) with `strategy`.
+Piece run_subtree(const formulate::Formulation& formulation, size_t i, const RunOptions& options, Budget& budget,
+                  Sharing* sharing, std::vector<std::string> strategy, std::vector<SearchState::Node> nodes);
+
+// Sub-problem i's result from all its pieces merged, as the single search would have ended it:
+// solutions in search-tree order, refinement when complete, residuals.
+SubResult finish_subproblem(const formulate::Formulation& formulation, size_t i, const RunOptions& options,
+                            Budget& budget, Piece merged);
+
+// A sub-problem that no search reached before a limit stopped the run.
+SubResult unstarted_subproblem(const formulate::Formulation& formulation, size_t i);
+
+// The whole run's figures from its sub-problems (totals, counters by contractor, the strategy
+// that ran, completeness), as solve_case ends.
+void summarise(CaseResult& result, const RunOptions& options, const Budget& budget);
+
+}  // namespace linkbox::solve
