@@ -1,6 +1,5 @@
 #include "newton/float_system.hpp"
 
-#include "newton/square_system.hpp"
 
 #include <Eigen/QR>
 

@@ -84,18 +84,23 @@ IMatrix SquareSystem::jacobian(const Box& x) const {
   return j;
 }
 
+std::vector<double> SquareSystem::full_point(const Eigen::VectorXd& x) const {
+  std::vector<double> y;
+  for (auto& v : base_) y.push_back(median(v));
+  for (size_t j = 0; j < unknowns_.size(); ++j) y[unknowns_[j]] = x(static_cast<Eigen::Index>(j));
+  return y;
+}
+
 Eigen::VectorXd SquareSystem::values_at(const Eigen::VectorXd& x) const {
-  const Box full = embed(point_box(x));
-  std::vector<double> y(full.size()), f(compiled_->rows());
-  for (size_t i = 0; i < full.size(); ++i) y[i] = median(full[i]);
+  const std::vector<double> y = full_point(x);
+  std::vector<double> f(compiled_->rows());
   compiled_->values_float(y.data(), f.data());
   return Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size()));
 }
 
 Eigen::MatrixXd SquareSystem::jacobian_at(const Eigen::VectorXd& x) const {
-  const Box full = embed(point_box(x));
-  std::vector<double> y(full.size()), d(compiled_->nonzeros());
-  for (size_t i = 0; i < full.size(); ++i) y[i] = median(full[i]);
+  const std::vector<double> y = full_point(x);
+  std::vector<double> d(compiled_->nonzeros());
   compiled_->jacobian_float(y.data(), d.data());
   Eigen::MatrixXd j = Eigen::MatrixXd::Zero(size(), size());
   for (int e = 0; e < compiled_->nonzeros(); ++e)

@@ -41,6 +41,7 @@ class SquareSystem {
   Eigen::MatrixXd jacobian_at(const Eigen::VectorXd& x) const;
 
  private:
+  std::vector<double> full_point(const Eigen::VectorXd& x) const;  // x at the unknowns, base midpoints elsewhere
   std::vector<int> unknowns_;
   Box base_;
   // Evaluated over all variables of `base`; Jacobian entries of unknowns are picked out.
