@@ -365,3 +365,36 @@ equations = [ "x^2 + y^2", "x^2 - y^3" ]
   CHECK(headline.find("(singular Jacobian in the cluster: 1 cluster)") != std::string::npos);
   CHECK(headline.find(" x1") == std::string::npos);
 }
+
+namespace {
+
+// Proves nothing: the search bisects [0, 1]^2 down to sigma, a full binary tree.
+class Idle final : public prune::Contractor {
+ public:
+  std::string name() const override { return "idle"; }
+  prune::Outcome contract(Box&) override { return prune::Outcome::unchanged; }
+  std::unique_ptr<prune::Contractor> clone() const override { return std::make_unique<Idle>(); }
+};
+
+}  // namespace
+
+TEST_CASE("the share of the search tree resolved counts leaves by depth, whatever their volume", "[run_control]") {
+  std::vector<std::unique_ptr<prune::Contractor>> members;
+  members.push_back(std::make_unique<Idle>());
+  prune::Sequence seq(std::move(members));
+  solve::Params p;
+  p.sigma = 0.3;  // widths 1, 1/2, 1/4: every leaf at depth 4, 16 of them
+  solve::Budget budget(p);
+  solve::Search search(Box{Interval(0, 1), Interval(0, 1)}, seq, {0, 1}, p, budget);
+  CHECK(search.tree_done() == 0);
+  double before = 0;
+  for (double limit = 1; !search.finished(); limit += 7) {
+    search.run(1, limit);
+    const double done = search.tree_done();
+    CHECK(done >= before);
+    CHECK(done == static_cast<double>(search.state().solutions.size()) / 16);
+    before = done;
+  }
+  CHECK(search.tree_done() == 1);
+  CHECK(search.result().solutions.size() == 16);
+}

@@ -143,6 +143,11 @@ Search::~Search() = default;
 
 double Search::work() const { return s_->work; }
 double Search::fraction_done() const { return s_->volume_done; }
+double Search::tree_done() const {
+  double pending = 0;
+  for (auto& n : s_->pending) pending += std::ldexp(1.0, -static_cast<int>(n.path.size()));
+  return 1 - pending;
+}
 bool Search::done() const { return s_->stopped || s_->pending.empty(); }
 bool Search::finished() const { return s_->pending.empty(); }
 bool Search::paused() const { return s_->paused; }

@@ -135,6 +135,9 @@ class Search {
   // Share of the start box's volume (over the split dimensions) in boxes already resolved
   // (empty or solutions): a rough progress measure (shrinking resolves volume too).
   double fraction_done() const;
+  // The share of the search tree resolved, each bisection splitting what is left of it in
+  // two equal halves whatever the volumes: the pending nodes' 2^-depth, from their paths.
+  double tree_done() const;
   bool done() const;
   bool finished() const;  // every box resolved: the search is complete
   // Asked before each box: when it says so, run() returns (with paused() true) and the
