@@ -76,3 +76,32 @@ TEST_CASE("each contractor reports its own work, LPs included", "[strategies]") 
   CHECK(lp.lps_solved <= 6 * lp.calls);
   CHECK(lp.lp_iterations > 0);
 }
+
+TEST_CASE("a race run side by side on two threads picks the winner and boxes of the one-thread race", "[strategies]") {
+  for (const char* file : {"cases/benchmarks/kin1.toml", "cases/linkages/6r-rigid.toml", "cases/linkages/cyclohexane.toml"}) {
+    INFO(file);
+    const formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + file);
+    solve::RunOptions o;
+    o.progress = false;
+    o.params.sigma = 0.1;
+    o.threads = 1;
+    const auto one = solve::solve_case(*c.formulation, o);
+    o.threads = 2;
+    const auto two = solve::solve_case(*c.formulation, o);
+    REQUIRE(one.subproblems.size() == 1);
+    REQUIRE(two.subproblems.size() == 1);
+    const auto &a = one.subproblems[0], &b = two.subproblems[0];
+    REQUIRE(a.race.size() == 2);  // "auto" raced two candidates
+    REQUIRE(b.race.size() == 2);
+    CHECK(a.strategy == b.strategy);
+    CHECK(a.race.back() == b.race.back());  // the winner, and its work to the last box
+    CHECK(b.race.front().second >= a.race.front().second);  // a loser may have run its last turn too
+    REQUIRE(a.solutions.size() == b.solutions.size());
+    for (size_t k = 0; k < a.solutions.size(); ++k)
+      for (size_t j = 0; j < a.solutions[k].size(); ++j) {
+        CHECK(a.solutions[k][j].lower() == b.solutions[k][j].lower());
+        CHECK(a.solutions[k][j].upper() == b.solutions[k][j].upper());
+      }
+    CHECK(a.certified == b.certified);
+  }
+}

@@ -161,8 +161,8 @@ struct Racer {
 // work (boxes + kLpWork per LP), until one finishes; its boxes are the result, as if it had
 // run alone. Turns double. After a first turn each, the candidate whose projected total work
 // (work / share of the search tree resolved) is smaller gets the turn and the others
-// kRaceShare of it, so a wrong projection costs a bounded factor. A race runs in one thread,
-// so where it stops is deterministic.
+// kRaceShare of it, so a wrong projection costs a bounded factor. Each candidate's search
+// runs in one thread, so where it stops is deterministic.
 constexpr double kRaceShare = 0.125;
 constexpr double kFirstTurn = 4000;
 
@@ -404,22 +404,42 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
 
   // The race (one candidate: its search). Each step runs one candidate up to its target; a
   // pause for a checkpoint resumes the same step, so the race goes exactly as unbroken.
-  while (race.winner < 0) {
+  auto pick_lead = [&] {
+    race.lead = 0;
+    for (size_t k = 1; k < racers.size(); ++k)
+      if (projected(*racers[k]->search) * kLeadMargin < projected(*racers[race.lead]->search)) race.lead = k;
+  };
+  // First turn: every candidate gets the share (a costly first box of one should not delay
+  // another that finishes at once: the rigid 6R's LP candidate).
+  auto target_of = [&](size_t k) {
+    const double share = k == race.lead && race.turn > kFirstTurn ? 1 : kRaceShare;
+    return racers[k]->search->work() + race.turn * share;
+  };
+  // With threads to spare, a round's candidates run side by side, one thread each: a
+  // candidate's turn depends only on its own search and on the lead chosen before the round,
+  // so the winner (the first in order to finish) and its boxes are those of the one-thread
+  // race. Only the losers' work differs: those after the winner ran their last turn too. A
+  // checkpoint's pauses need the one-thread order.
+  const bool side_by_side = run.threads > 1 && racers.size() > 1 && !run.checkpoints.enabled();
+  while (race.winner < 0 && side_by_side) {
+    if (race.turn > kFirstTurn) pick_lead();
+    std::vector<std::thread> pool;
+    for (size_t k = 0; k < racers.size(); ++k)
+      pool.emplace_back([&, k, target = target_of(k)] { racers[k]->search->run(1, target); });
+    for (auto& t : pool) t.join();
+    for (size_t k = 0; k < racers.size() && race.winner < 0; ++k)
+      if (racers[k]->search->finished()) race.winner = static_cast<int>(k);
+    if (race.winner >= 0 || run.budget.exhausted()) break;
+    race.turn *= 2;
+  }
+  while (race.winner < 0 && !side_by_side) {
     Search& search = *racers[race.next]->search;
     if (racers.size() == 1) {
       search.run(run.threads);
     } else {
       if (race.target < 0) {
-        if (race.next == 0 && race.turn > kFirstTurn) {
-          race.lead = 0;
-          for (size_t k = 1; k < racers.size(); ++k)
-            if (projected(*racers[k]->search) * kLeadMargin < projected(*racers[race.lead]->search)) race.lead = k;
-        }
-        // First turn: every candidate gets the share (a costly first box of one should not
-        // delay another that finishes at once: the rigid 6R's LP candidate).
-        const size_t k = race.next;
-        const double share = k == race.lead && race.turn > kFirstTurn ? 1 : kRaceShare;
-        race.target = search.work() + race.turn * share;
+        if (race.next == 0 && race.turn > kFirstTurn) pick_lead();
+        race.target = target_of(race.next);
       }
       search.run(1, race.target);
     }
