@@ -1,5 +1,7 @@
 #include "solve/branch_and_prune.hpp"
 
+#include "interval/rigorous.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
@@ -299,7 +301,10 @@ bool Search::run(int threads, double work_limit) {
   for (int t = 1; t < threads; ++t) {
     clones.push_back(st.contractor.clone_sequence());
     certifiers.push_back(st.certifier ? st.certifier->clone() : nullptr);
-    pool.emplace_back(worker, std::ref(*clones.back()), certifiers.back().get());
+    pool.emplace_back([&, c = clones.back().get(), certify = certifiers.back().get()] {
+      worker(*c, certify);
+      rigorous::release_thread_caches();
+    });
   }
   worker(st.contractor, st.certifier);
   for (auto& t : pool) t.join();

@@ -1,5 +1,6 @@
 #include "solve/solve_case.hpp"
 
+#include "interval/rigorous.hpp"
 #include "solve/checkpoint.hpp"
 #include "solve/share.hpp"
 
@@ -425,7 +426,10 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     if (race.turn > kFirstTurn) pick_lead();
     std::vector<std::thread> pool;
     for (size_t k = 0; k < racers.size(); ++k)
-      pool.emplace_back([&, k, target = target_of(k)] { racers[k]->search->run(1, target); });
+      pool.emplace_back([&, k, target = target_of(k)] {
+        racers[k]->search->run(1, target);
+        rigorous::release_thread_caches();
+      });
     for (auto& t : pool) t.join();
     for (size_t k = 0; k < racers.size() && race.winner < 0; ++k)
       if (racers[k]->search->finished()) race.winner = static_cast<int>(k);
@@ -536,7 +540,11 @@ CaseResult solve_case(const formulate::Formulation& formulation, const RunOption
   {
     Ticker ticker(options.progress, tallies, budget, checkpoints);
     std::vector<std::thread> pool;
-    for (int t = 1; t < across; ++t) pool.emplace_back(worker);
+    for (int t = 1; t < across; ++t)
+      pool.emplace_back([&] {
+        worker();
+        rigorous::release_thread_caches();
+      });
     worker();
     for (auto& t : pool) t.join();
   }
