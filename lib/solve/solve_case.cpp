@@ -5,6 +5,7 @@
 #include "solve/share.hpp"
 
 #include <condition_variable>
+#include <exception>
 #include <cstdio>
 #include <mutex>
 #include <algorithm>
@@ -425,12 +426,19 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
   while (race.winner < 0 && side_by_side) {
     if (race.turn > kFirstTurn) pick_lead();
     std::vector<std::thread> pool;
+    std::vector<std::exception_ptr> errors(racers.size());  // thrown on, as the one-thread race would
     for (size_t k = 0; k < racers.size(); ++k)
       pool.emplace_back([&, k, target = target_of(k)] {
-        racers[k]->search->run(1, target);
+        try {
+          racers[k]->search->run(1, target);
+        } catch (...) {
+          errors[k] = std::current_exception();
+        }
         rigorous::release_thread_caches();
       });
     for (auto& t : pool) t.join();
+    for (auto& e : errors)
+      if (e) std::rethrow_exception(e);
     for (size_t k = 0; k < racers.size() && race.winner < 0; ++k)
       if (racers[k]->search->finished()) race.winner = static_cast<int>(k);
     if (race.winner >= 0 || run.budget.exhausted()) break;
