@@ -161,9 +161,12 @@ class Search {
 // against 20-40 us per box on the rigid 6R, Eco9 and planted systems).
 constexpr double kLpWork = 15;
 // A solution box that Newton has not certified is work still to come: clustering, Newton on
-// its cluster, refinement. On a curve (cyclohexane at sigma 0.1) that costs ~4 ms per box,
-// about 100 boxes of propagation; a strategy that leaves many such boxes is not cheap,
-// however fast it reached them.
+// its cluster, refinement. On a curve (cyclohexane at sigma 0.1) that cost ~4 ms per box
+// when this was set, about 100 boxes of propagation; a strategy that leaves many such boxes
+// is not cheap, however fast it reached them. Since the curve verification got faster it is
+// ~0.5 ms (about 20 boxes), but 20 alone lost bicyclohexane's race to the strategy that left
+// 50 000 such boxes (172 s against 40 s): it must change together with the LP's price, which
+// is 2.8-20 boxes by system, not kLpWork (issue 9's note).
 constexpr double kSolutionWork = 100;
 
 // With threads > 1 a Search processes boxes in parallel with clones of `contractor` (their

@@ -177,8 +177,8 @@ constexpr double kLeadMargin = 2;
 // contraction removes most of the volume in the first boxes, while the work gathers around
 // the solution set, where little volume is left. On volume, a propagation search that had
 // cleared all but 1e-5 of a curve's neighbourhood looked nearly done and kept the lead for
-// half of the run (bicyclohexane 52 -> 35 s CPU, Eco10 29 -> 21 s, mobile 6R 1.14 -> 0.97 s;
-// cyclohexane 0.54 -> 0.70 s, where the LP candidate now leads for a while).
+// half of the run (bicyclohexane 52 -> 35-40 s CPU, Eco10 29 -> 21 s, mobile 6R 1.14 ->
+// 0.97-1.10 s; cyclohexane 0.54-0.60 -> 0.70-0.76 s, where the LP candidate now leads for a while).
 double projected(const Search& s) { return s.work() / std::max(s.tree_done(), 1e-9); }
 
 // A solution box that the certifier did not settle (too wide for Newton near a close pair of
