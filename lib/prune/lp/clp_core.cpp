@@ -20,10 +20,12 @@ double to_clp(double v) {
 }
 
 // CLP can cycle or stall on degenerate relaxations (seen on bicyclohexane). A capped solve
-// only loses pruning: the N-S bound holds for whatever duals it stopped with.
+// only loses pruning: the N-S bound holds for whatever duals it stopped with. The cap counts
+// iterations, not seconds: with setMaximumSeconds CLP reads the process's CPU clock
+// (getrusage, a system call) at every iteration, 8% of an LP-bound run (perf, rigid 6R),
+// and a cap in seconds would make the pruning depend on the machine's speed.
 void cap_effort(ClpSimplex& model) {
   model.setMaximumIterations(200 + 20 * (model.numberRows() + model.numberColumns()));
-  model.setMaximumSeconds(2.0);
 }
 
 // The elastic LP: rows  row_lo <= A x + e+ - e- <= row_hi,  x in X,  e+-  >= 0, minimizing
