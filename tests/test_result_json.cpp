@@ -144,3 +144,28 @@ TEST_CASE("json: check re-runs every gimbal-lock crossing, each in its own chart
   CHECK(ok.checked == curve["crossings_certified"].get<int>());
   CHECK(ok.checked > 0);
 }
+
+TEST_CASE("json: LPs per box and microseconds per LP agree with the LP contractor's counts", "[json][lp]") {
+  auto c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/linkages/6r-rigid.toml");
+  solve::RunOptions o;
+  o.progress = false;
+  o.strategy.contractors = solve::parse_strategy_list("hc4,lp");
+  o.params.max_boxes = 40;
+  const solve::CaseResult r = solve::solve_case(*c.formulation, o);
+  const json j = report::result_json(c.name, c.file, *c.formulation, o, r);
+  const long boxes = j["stats"]["processed"].get<long>();
+  REQUIRE(boxes > 0);
+  int with_lps = 0;
+  for (const json& k : j["contractors"]) {
+    const long lps = k["lps_solved"].get<long>();
+    if (lps == 0) {
+      CHECK_FALSE(k.contains("us_per_lp"));
+      continue;
+    }
+    ++with_lps;
+    CHECK(k["lps_per_box"].get<double>() * static_cast<double>(boxes) == Approx(static_cast<double>(lps)));
+    CHECK(k["us_per_lp"].get<double>() * static_cast<double>(lps) == Approx(1e6 * k["seconds"].get<double>()));
+    CHECK(k["us_per_lp"].get<double>() > 0);
+  }
+  CHECK(with_lps == 1);
+}

@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+
 namespace linkbox::report {
 
 using nlohmann::json;
@@ -79,6 +81,14 @@ json result_json(const std::string& case_name, const std::string& case_file,
     json cj = {{"name", result.contractor_names.at(k)}, {"calls", c.calls}, {"emptied", c.emptied},
                {"volume_removed", c.volume_removed}, {"seconds", c.seconds},
                {"lps_solved", c.lps_solved}, {"lp_iterations", c.lp_iterations}};
+    if (c.lps_solved > 0) {
+      // Issue 9's two measures of the LP contractor's cost: how many LPs a box takes (over
+      // every box processed, those it did not run on included) and what one costs (the
+      // contractor's seconds, its bound propagation included, per LP).
+      const long boxes = std::max<long>(1, result.total.processed);
+      cj["lps_per_box"] = static_cast<double>(c.lps_solved) / static_cast<double>(boxes);
+      cj["us_per_lp"] = 1e6 * c.seconds / static_cast<double>(c.lps_solved);
+    }
     if (c.lp_paths.any())  // the exact LP backend only
       cj["lp_paths"] = {{"basis", c.lp_paths.basis}, {"repaired", c.lp_paths.repaired}, {"farkas", c.lp_paths.farkas},
                         {"fallback", c.lp_paths.fallback}, {"pivots", c.lp_paths.pivots}};
