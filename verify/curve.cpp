@@ -117,7 +117,8 @@ constexpr size_t kCurveSample = 16;
 constexpr size_t kCurveSampleNeeded = 4;
 
 // Certifies member by member that a solution curve crosses it; false (and `c` untouched) when
-// the sample already shows that crossings cannot cover half of the boxes.
+// the sample passes too rarely for crossings to be likely to cover half of the boxes. Only how
+// the cluster is reported depends on it: every crossing listed is certified in full.
 bool certify_curve(const formulate::Formulation& f, const std::vector<Box>& members,
                    const std::vector<std::uint64_t>& charts, ClusterReport& c, const newton::NewtonOptions& options) {
   CrossingCertifier cross(f, members, charts, options);

@@ -18,22 +18,21 @@ void ExactLp::set_column_bounds(int col, double lo, double hi) {
   exact_.set_column_bounds(col, lo, hi);
 }
 
+bool ExactLp::proves_infeasible_either_sign(std::vector<double>& y) const {
+  if (exact_.proves_infeasible(y)) return true;
+  for (double& v : y) v = -v;
+  return exact_.proves_infeasible(y);
+}
+
 LpBound ExactLp::solve(int col, double sense) {
   const ClpCore::Finish finish = clp_.solve(col, sense);
   const LpBound infeasible{LpStatus::infeasible, sense > 0 ? kInf : -kInf};
   std::vector<double> y;
   // CLP's ray (either sign: the convention changed across CLP versions) is checked first: a
   // Farkas certificate in rationals is the cheapest proof.
-  if (finish == ClpCore::Finish::infeasible && clp_.ray(y)) {
-    bool proved = exact_.proves_infeasible(y);
-    if (!proved) {
-      for (double& v : y) v = -v;
-      proved = exact_.proves_infeasible(y);
-    }
-    if (proved) {
-      ++paths_.farkas;
-      return infeasible;
-    }
+  if (finish == ClpCore::Finish::infeasible && clp_.ray(y) && proves_infeasible_either_sign(y)) {
+    ++paths_.farkas;
+    return infeasible;
   }
   // CLP's last basis, optimal or not: checked, else repaired by exact pivots (a dual simplex
   // row with no entering variable says infeasible; its multipliers are checked as a Farkas
@@ -62,12 +61,7 @@ LpBound ExactLp::solve(int col, double sense) {
     // Trusted only as a checked Farkas certificate (the oracle once caught the dual simplex
     // claiming an LP empty that CGAL solved); else CGAL decides below.
     std::vector<double> yr = r.farkas;
-    bool proved = exact_.proves_infeasible(yr);
-    if (!proved) {
-      for (double& v : yr) v = -v;
-      proved = exact_.proves_infeasible(yr);
-    }
-    if (proved) {
+    if (proves_infeasible_either_sign(yr)) {
       ++paths_.farkas;
       return infeasible;
     }

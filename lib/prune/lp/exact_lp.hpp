@@ -41,6 +41,10 @@ class ExactLp final : public LpSolver {
 
  private:
   LpBound solve(int col, double sense);
+  // A candidate Farkas certificate of either sign (CLP's ray convention changed across
+  // versions; a dual simplex row's multipliers come with the leaving row's sign), checked
+  // exactly; y is left negated when only -y proves it.
+  bool proves_infeasible_either_sign(std::vector<double>& y) const;
 
   ClpCore clp_;
   ExactSimplex exact_;
