@@ -201,9 +201,10 @@ constexpr size_t kRefineGroup = 1024;
 // and none certified a root, the rest of the group is left as the search found it. (Giving
 // them 50 work each instead dropped the spurious boxes beside the curve, but cost more than
 // verifying them: cyclohexane 0.53 -> 0.41 s CPU with 819 boxes left instead of 321, the
-// mobile 6R 0.95 -> 0.69 s with 98 instead of 45, bicyclohexane 35.5 -> 33 s; on 400
-// planted systems the same roots certified and the same counts claimed, 3 close-pair
-// systems with a few more uncertified boxes.)
+// mobile 6R 0.95 -> 0.69 s with 98 instead of 45, bicyclohexane 35.5 -> 33 s. On the 10 000
+// planted systems of papers/reliability the same counts are claimed and 4 roots fewer
+// certified, of 28 752: close pairs where the 50-work pass certified one after three failed
+// probes.)
 constexpr int kRefineProbe = 3;
 constexpr size_t kRefineMax = 4000;
 
