@@ -1,7 +1,9 @@
 // Every strategy must certify the same roots on the bundled cases: the certified boxes of
 // one strategy each overlap exactly one of another's (angles modulo 2 pi).
 #include "formulate/load.hpp"
+#include "solve/branch_and_prune.hpp"
 #include "solve/solve_case.hpp"
+#include "solve/strategy.hpp"
 #include "verify/certify_case.hpp"
 #include "verify/cluster.hpp"
 
@@ -77,7 +79,7 @@ TEST_CASE("each contractor reports its own work, LPs included", "[strategies]") 
   CHECK(lp.lp_iterations > 0);
 }
 
-TEST_CASE("a race run side by side on two threads picks the winner and boxes of the one-thread race", "[strategies]") {
+TEST_CASE("a race on several threads picks the winner and boxes of the one-thread race", "[strategies]") {
   for (const char* file : {"cases/benchmarks/kin1.toml", "cases/linkages/6r-rigid.toml", "cases/linkages/cyclohexane.toml"}) {
     INFO(file);
     const formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + file);
@@ -86,22 +88,67 @@ TEST_CASE("a race run side by side on two threads picks the winner and boxes of 
     o.params.sigma = 0.1;
     o.threads = 1;
     const auto one = solve::solve_case(*c.formulation, o);
-    o.threads = 2;
-    const auto two = solve::solve_case(*c.formulation, o);
     REQUIRE(one.subproblems.size() == 1);
-    REQUIRE(two.subproblems.size() == 1);
-    const auto &a = one.subproblems[0], &b = two.subproblems[0];
+    const auto& a = one.subproblems[0];
     REQUIRE(a.race.size() == 2);  // "auto" raced two candidates
-    REQUIRE(b.race.size() == 2);
-    CHECK(a.strategy == b.strategy);
-    CHECK(a.race.back() == b.race.back());  // the winner, and its work to the last box
-    CHECK(b.race.front().second >= a.race.front().second);  // a loser may have run its last turn too
-    REQUIRE(a.solutions.size() == b.solutions.size());
-    for (size_t k = 0; k < a.solutions.size(); ++k)
-      for (size_t j = 0; j < a.solutions[k].size(); ++j) {
-        CHECK(a.solutions[k][j].lower() == b.solutions[k][j].lower());
-        CHECK(a.solutions[k][j].upper() == b.solutions[k][j].upper());
+    for (int threads : {2, 3}) {
+      INFO(threads << " threads");
+      o.threads = threads;
+      const auto many = solve::solve_case(*c.formulation, o);
+      REQUIRE(many.subproblems.size() == 1);
+      const auto& b = many.subproblems[0];
+      CHECK(a.strategy == b.strategy);
+      CHECK(a.race == b.race);  // every turn ended at the same box: the same work, loser included
+      CHECK(a.stats.processed == b.stats.processed);
+      REQUIRE(a.solutions.size() == b.solutions.size());
+      for (size_t k = 0; k < a.solutions.size(); ++k)
+        for (size_t j = 0; j < a.solutions[k].size(); ++j) {
+          CHECK(a.solutions[k][j].lower() == b.solutions[k][j].lower());
+          CHECK(a.solutions[k][j].upper() == b.solutions[k][j].upper());
+        }
+      CHECK(a.certified == b.certified);
+    }
+  }
+}
+
+TEST_CASE("a search cut at work limits stops at the same box on any number of threads", "[strategies]") {
+  // Look-ahead mode (Search::run with threads and a limit): helpers shrink boxes ahead of the
+  // depth-first front, the front takes their results in order. At every stop the state must be
+  // the one-thread search's: the same pending boxes, solutions and work.
+  const formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/linkages/6r-rigid.toml");
+  const formulate::SubProblem sub = c.formulation->subproblem(0);
+  solve::StrategyOptions so;
+  so.contractors = {"hc4", "newton", "/", "lp"};
+  solve::Params p;
+  p.rho = 0.8;
+  auto states = [&](int threads) {
+    solve::Strategy strategy = solve::make_strategy(so, sub);
+    solve::Budget budget(p);
+    solve::Search search(sub.system.domain(), *strategy.sequence, sub.split_dims, p, budget);
+    std::vector<solve::SearchState> out;
+    for (double limit = 50; !search.finished(); limit *= 1.5) {
+      search.run(threads, limit);
+      out.push_back(search.state());
+    }
+    return out;
+  };
+  const auto one = states(1);
+  const auto three = states(3);
+  REQUIRE(one.size() > 5);
+  REQUIRE(one.size() == three.size());
+  for (size_t k = 0; k < one.size(); ++k) {
+    INFO("stop " << k);
+    CHECK(one[k].work == three[k].work);
+    CHECK(one[k].stats.processed == three[k].stats.processed);
+    REQUIRE(one[k].pending.size() == three[k].pending.size());
+    for (size_t j = 0; j < one[k].pending.size(); ++j) CHECK(one[k].pending[j].path == three[k].pending[j].path);
+    REQUIRE(one[k].solutions.size() == three[k].solutions.size());
+    for (size_t j = 0; j < one[k].solutions.size(); ++j) {
+      CHECK(one[k].solutions[j].path == three[k].solutions[j].path);
+      for (size_t d = 0; d < one[k].solutions[j].box.size(); ++d) {
+        CHECK(one[k].solutions[j].box[d].lower() == three[k].solutions[j].box[d].lower());
+        CHECK(one[k].solutions[j].box[d].upper() == three[k].solutions[j].box[d].upper());
       }
-    CHECK(a.certified == b.certified);
+    }
   }
 }

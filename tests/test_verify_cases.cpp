@@ -75,3 +75,36 @@ TEST_CASE("agile eye: every pose certified, the trivial ones with their closed-f
   }
   CHECK(trivial == 4);
 }
+
+TEST_CASE("clusters verified on several threads give the one-thread report", "[verify][cases]") {
+  // The agile eye (many isolated roots) and the cyclohexane curve (crossings certified in a
+  // sample first): every cluster's verdict, root and crossings, in the same order.
+  for (const char* path : {"cases/spherical/agile-eye.toml", "cases/linkages/cyclohexane.toml"}) {
+    INFO(path);
+    const formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + path);
+    solve::RunOptions o;
+    o.progress = false;
+    o.params.sigma = 0.1;
+    const solve::CaseResult r = solve::solve_case(*c.formulation, o);
+    verify::VerifyOptions one, three;
+    three.threads = 3;
+    const verify::VerifyReport a = verify::verify_case(*c.formulation, r, one);
+    const verify::VerifyReport b = verify::verify_case(*c.formulation, r, three);
+    REQUIRE(a.clusters.size() > 2);
+    REQUIRE(a.clusters.size() == b.clusters.size());
+    CHECK(a.headline == b.headline);
+    for (size_t k = 0; k < a.clusters.size(); ++k) {
+      const auto &x = a.clusters[k], &y = b.clusters[k];
+      CHECK(x.status == y.status);
+      CHECK(x.reason == y.reason);
+      CHECK(x.boxes == y.boxes);
+      CHECK(x.duplicate_of == y.duplicate_of);
+      CHECK(x.crossings_certified == y.crossings_certified);
+      REQUIRE(x.root.size() == y.root.size());
+      for (size_t d = 0; d < x.root.size(); ++d) {
+        CHECK(x.root[d].lower() == y.root[d].lower());
+        CHECK(x.root[d].upper() == y.root[d].upper());
+      }
+    }
+  }
+}

@@ -5,9 +5,14 @@
 #include "verify/headline.hpp"
 #include "verify/isolated.hpp"
 
+#include "interval/rigorous.hpp"
+
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <thread>
 
 namespace linkbox::verify {
 
@@ -105,8 +110,10 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     groups.push_back(std::move(g));
   }
   std::sort(groups.begin(), groups.end());  // by smallest member: independent of which were certified
-  for (auto& g : groups) {
-    ClusterReport c;
+  // Clusters are independent: with threads, each takes the next one, and the reports keep
+  // the clusters' order.
+  report.clusters.resize(groups.size());
+  auto verify_cluster = [&](const std::vector<int>& g, ClusterReport& c) {
     std::vector<Box> member;
     for (int i : g) {
       c.boxes.push_back(where[i]);
@@ -117,8 +124,7 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     for (auto& b : member) c.hull = hull(c.hull, b);
     if (options.skip_rest && options.skip_rest()) {
       c.reason = "verification skipped (interrupted)";
-      report.clusters.push_back(std::move(c));
-      continue;
+      return;
     }
     c.chart = f.chart_for(c.hull);
     Box start;
@@ -130,8 +136,28 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
     if (!start.empty()) certify_isolated(f, f.natural(c.chart), start, member, periodic, c, options.newton);
     classify_curve(f, member, !start.empty(), c, options.newton);
     if (!start.empty()) classify_inequalities(f.natural(c.chart), start, c);
-    report.clusters.push_back(std::move(c));
-  }
+  };
+  std::atomic<size_t> next{0};
+  std::vector<std::exception_ptr> errors(groups.size());
+  auto work = [&] {
+    for (size_t k; (k = next.fetch_add(1)) < groups.size();) {
+      try {
+        verify_cluster(groups[k], report.clusters[k]);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min<int>(options.threads, static_cast<int>(groups.size())); ++t)
+    pool.emplace_back([&] {
+      work();
+      rigorous::release_thread_caches();
+    });
+  work();
+  for (auto& t : pool) t.join();
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);  // the first cluster's error, as one thread would have thrown
   const int overlaps_unresolved = merge_duplicates(f, report, periodic, options.newton);
   report.inequalities = static_cast<int>(f.natural(0).inequalities.size());
   summarise(report, overlaps_unresolved, result);

@@ -18,6 +18,7 @@ struct VerifyOptions {
   // Asked before each cluster: when it says so (a second interrupt), the clusters left are
   // reported unverified ("verification skipped") and the run ends at once.
   std::function<bool()> skip_rest;
+  int threads = 1;  // clusters verified in parallel; the report does not depend on it
 };
 
 VerifyReport verify_case(const formulate::Formulation& formulation, const solve::CaseResult& result,

@@ -192,6 +192,7 @@ int report_and_verify(const SolveCommand& cmd, const formulate::LoadedCase& c, c
   if (!cmd.no_verify && interrupts.load() < 2) {
     verify::VerifyOptions vo;
     vo.skip_rest = [] { return interrupts.load() >= 2; };
+    vo.threads = o.threads;
     const verify::VerifyReport v = verify::verify_case(*c.formulation, r, vo);
     report::print_verification(stdout, c, v);
     report::add_verification(j, *c.formulation, v);
@@ -340,7 +341,7 @@ void add_run_options(CLI::App& cmd, SolveCommand& s) {
   cmd.add_option("--time-limit", o.params.time_limit, "seconds (0 = none); the search stops and keeps what it proved")
       ->check(number(0, false));
   cmd.add_option("--max-boxes", o.params.max_boxes, "processed boxes (0 = none)")->check(number(0, false));
-  cmd.add_option("--threads", o.threads, "threads across sub-problems")->check(CLI::Range(1, 256));
+  cmd.add_option("--threads", o.threads, "threads: sub-problems in parallel, and the boxes of each search")->check(CLI::Range(1, 256));
   cmd.add_option("--json", s.json_out, "write the result as JSON");
   cmd.add_option("--checkpoint", s.checkpoint, "save the run's state to this file, to go on with `linkbox resume`");
   cmd.add_option("--checkpoint-every", o.checkpoint_every, "seconds between checkpoints (default 60)")

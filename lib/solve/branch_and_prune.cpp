@@ -6,7 +6,9 @@
 #include <cmath>
 #include <condition_variable>
 #include <deque>
+#include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 
 namespace linkbox::solve {
@@ -104,6 +106,24 @@ long lps_of(const prune::Sequence& c) {
   return n;
 }
 
+// One box shrunk, and what its turn in the search does with it.
+struct Processed {
+  Verdict verdict = Verdict::stopped;
+  Node node;  // the box: as taken when stopped (it goes back to the list), else as shrunk
+  double volume = 0;  // its share of the start box (split dims), as taken
+  double work = 0;
+  Stats stats;  // this box's counts
+  std::pair<Node, Node> halves;  // when split
+};
+
+// A box processed ahead of its turn in depth-first order (look-ahead mode of Search::run),
+// or one a helper thread is shrinking, or a child of such a box waiting for a helper.
+struct Ahead {
+  enum class Mark { open, busy, done } mark = Mark::open;
+  Node node;       // open
+  Processed done;  // done
+};
+
 }  // namespace
 
 struct Search::State {
@@ -131,6 +151,17 @@ struct Search::State {
   BoxLog* log = nullptr;
   size_t log_subproblem = 0;
   int log_candidate = 0;
+  // Look-ahead mode: boxes beyond the depth-first front, by path, kept across runs (a race's
+  // turns); `open_paths` indexes the open ones, `ahead_work` sums the done ones' work.
+  std::map<std::string, Ahead> ahead;
+  std::set<std::string> open_paths;
+  double ahead_work = 0;
+  std::vector<std::unique_ptr<prune::Sequence>> helpers;
+  std::vector<std::unique_ptr<Certifier>> helper_certifiers;
+
+  Processed process(prune::Sequence& c, Certifier* certify, Node node, bool& cut, const std::function<bool()>& stop);
+  void commit(Processed&& p);
+  void run_ahead(int threads, double work_limit);
 };
 
 Search::Search(const Box& start, prune::Sequence& contractor, std::vector<int> split_dims, const Params& params,
@@ -188,21 +219,87 @@ void Search::set_state(SearchState state) {
   s_->volume_pending = 0;
   for (auto& n : s_->pending) s_->volume_pending += volume_ratio(s_->start, n.box, s_->split_dims);
   s_->stopped = false;
+  s_->ahead.clear();
+  s_->open_paths.clear();
+  s_->ahead_work = 0;
+}
+
+Processed Search::State::process(prune::Sequence& c, Certifier* certify, Node node, bool& cut,
+                                 const std::function<bool()>& stop) {
+  Processed p;
+  const std::vector<prune::Counters> counters_before = c.counters();
+  Node taken = node;
+  p.stats.processed++;
+  p.volume = volume_ratio(start, node.box, split_dims);
+  const long lps = lps_of(c);
+  const auto shrink_start = log ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  p.verdict = shrink(node.box, node.backoff, c, certify, split_dims, params, cut, stop, p.stats);
+  const Verdict v = p.verdict;
+  if (log && v != Verdict::stopped)
+    log->add({log_subproblem, log_candidate, node.path, v == Verdict::empty ? 'e' : v == Verdict::split ? 'x' : 's',
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - shrink_start).count()});
+  p.work = 1 + kLpWork * static_cast<double>(lps_of(c) - lps) + (v == Verdict::solution ? kSolutionWork : 0);
+  if (v == Verdict::stopped) {
+    c.set_counters(counters_before);  // its work undone in the counts
+    p.node = std::move(taken);
+    p.stats = {};
+    return p;
+  }
+  if (v == Verdict::empty) {
+    p.stats.empty++;
+  } else if (v == Verdict::solution || v == Verdict::certified) {
+    p.stats.solution++;
+    p.stats.certified += v == Verdict::certified;
+  } else {
+    p.stats.split++;
+    const int depth = static_cast<int>(node.path.size());
+    const int dim = bisector ? bisector->choose(node.box, depth) : widest_dimension(node.box, split_dims);
+    auto [a, b] = bisect(node.box, dim);
+    p.halves = {{std::move(a), node.path + '0', node.backoff.child()}, {std::move(b), node.path + '1', node.backoff.child()}};
+  }
+  p.node = std::move(node);
+  return p;
+}
+
+void Search::State::commit(Processed&& p) {
+  const Verdict v = p.verdict;
+  work += p.work;
+  stats += p.stats;
+  volume_pending -= p.volume;
+  if (v != Verdict::split) volume_done += p.volume;
+  if (v == Verdict::solution || v == Verdict::certified) {
+    solutions.push_back({std::move(p.node.path), std::move(p.node.box), v == Verdict::certified});
+  } else if (v == Verdict::split) {
+    volume_pending += volume_ratio(start, p.halves.first.box, split_dims) + volume_ratio(start, p.halves.second.box, split_dims);
+    // Depth-first: the lower half on top. Breadth-first: lower half first in line.
+    if (params.order == Order::depth_first) {
+      pending.push_back(std::move(p.halves.second));
+      pending.push_back(std::move(p.halves.first));
+    } else {
+      pending.push_back(std::move(p.halves.first));
+      pending.push_back(std::move(p.halves.second));
+    }
+  }
+  if (tally_pending) tally_pending->store(static_cast<long>(pending.size()), std::memory_order_relaxed);
+  if (tally_done) tally_done->store(1 - volume_pending, std::memory_order_relaxed);
 }
 
 bool Search::run(int threads, double work_limit) {
   const auto t0 = std::chrono::steady_clock::now();
   State& st = *s_;
+  st.paused = false;
+  if (threads > 1 && work_limit > 0 && st.params.order == Order::depth_first) {
+    st.run_ahead(threads, work_limit);
+    st.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return done();
+  }
   const Params& params = st.params;
   std::mutex m;
   std::condition_variable cv;
   int busy = 0;
   bool paused = false;
-  st.paused = false;
 
   auto worker = [&](prune::Sequence& c, Certifier* certify) {
-    Stats stats;
-    std::vector<Found> found;
     // Contractors ask between LPs: a limit or an interrupt then cuts the box being shrunk
     // short, and it goes back to the list as it was taken, its work undone in the counts.
     bool cut = false;
@@ -229,70 +326,20 @@ bool Search::run(int threads, double work_limit) {
       params.order == Order::depth_first ? st.pending.pop_back() : st.pending.pop_front();
       ++busy;
       lock.unlock();
-
-      const Stats stats_before = stats;
-      const std::vector<prune::Counters> counters_before = c.counters();
-      Node taken = node;
-      stats.processed++;
-      const double volume = volume_ratio(st.start, node.box, st.split_dims);
-      const long lps = lps_of(c);
-      const auto shrink_start = st.log ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-      const Verdict v = shrink(node.box, node.backoff, c, certify, st.split_dims, params, cut, stop, stats);
-      if (st.log && v != Verdict::stopped)
-        st.log->add({st.log_subproblem, st.log_candidate, node.path,
-                     v == Verdict::empty ? 'e' : v == Verdict::split ? 'x' : 's',
-                     std::chrono::duration<double>(std::chrono::steady_clock::now() - shrink_start).count()});
-      const double work = 1 + kLpWork * static_cast<double>(lps_of(c) - lps) + (v == Verdict::solution ? kSolutionWork : 0);
-      std::pair<Node, Node> halves;
-      if (v == Verdict::stopped) {
-        stats = stats_before;
-        c.set_counters(counters_before);
-      } else if (v == Verdict::empty) {
-        stats.empty++;
-      } else if (v == Verdict::solution || v == Verdict::certified) {
-        stats.solution++;
-        stats.certified += v == Verdict::certified;
-        found.push_back({std::move(node.path), std::move(node.box), v == Verdict::certified});
-      } else {
-        stats.split++;
-        const int depth = static_cast<int>(node.path.size());
-        const int dim = st.bisector ? st.bisector->choose(node.box, depth) : widest_dimension(node.box, st.split_dims);
-        auto [a, b] = bisect(node.box, dim);
-        halves = {{std::move(a), node.path + '0', node.backoff.child()}, {std::move(b), node.path + '1', node.backoff.child()}};
-      }
-
+      Processed p = st.process(c, certify, std::move(node), cut, stop);
       lock.lock();
       --busy;
-      st.volume_pending -= volume;
-      if (v == Verdict::stopped) {
-        st.volume_pending += volume;
+      if (p.verdict == Verdict::stopped) {
         st.stopped = true;
-        st.pending.push_back(std::move(taken));
+        st.pending.push_back(std::move(p.node));
         cv.notify_all();
         break;
       }
-      st.work += work;
-      if (v != Verdict::split) st.volume_done += volume;
-      if (v == Verdict::split) {
-        st.volume_pending += volume_ratio(st.start, halves.first.box, st.split_dims) +
-                             volume_ratio(st.start, halves.second.box, st.split_dims);
-        // Depth-first: the lower half on top. Breadth-first: lower half first in line.
-        if (params.order == Order::depth_first) {
-          st.pending.push_back(std::move(halves.second));
-          st.pending.push_back(std::move(halves.first));
-        } else {
-          st.pending.push_back(std::move(halves.first));
-          st.pending.push_back(std::move(halves.second));
-        }
-      }
-      if (st.tally_pending) st.tally_pending->store(static_cast<long>(st.pending.size()), std::memory_order_relaxed);
-      if (st.tally_done) st.tally_done->store(1 - st.volume_pending, std::memory_order_relaxed);
+      st.commit(std::move(p));
       cv.notify_all();
     }
     cv.notify_all();
     c.stop_when(nullptr);
-    st.stats += stats;
-    for (auto& f : found) st.solutions.push_back(std::move(f));
   };
 
   std::vector<std::unique_ptr<prune::Sequence>> clones;
@@ -311,6 +358,118 @@ bool Search::run(int threads, double work_limit) {
   for (auto& c : clones) st.contractor.add_counters(*c);
   st.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return done();
+}
+
+// Look-ahead mode, for a run cut at a work limit with several threads (a race's turn). The
+// search advances exactly as with one thread: boxes are committed (counted, their halves
+// listed, their solutions kept) one at a time in depth-first order, so it stops at the same
+// box with the same state. Every thread shrinks the first box in that order that nobody holds,
+// the list's top or, while another thread has the top, a box after it (a listed one, or a
+// half of a box shrunk ahead), and keeps the result until the top reaches it. What a box
+// becomes does not depend on who shrinks it or when, so the tree is the one-thread tree. The
+// threads shrink ahead only while the work committed and held stays below the limit: a turn
+// leaves at most one box per thread ahead of its end, the waste when a raced candidate loses.
+void Search::State::run_ahead(int threads, double work_limit) {
+  std::mutex m;
+  std::condition_variable cv;
+  bool over = false;
+
+  auto worker = [&](prune::Sequence& c, Certifier* certify) {
+    bool cut = false;
+    const std::function<bool()> stop = [&] { return cut = budget.stop_now(); };
+    c.stop_when(&stop);
+    std::unique_lock lock(m);
+    while (true) {
+      // Commit the done boxes at the top, in depth-first order.
+      while (!over && !stopped && !pending.empty() && work < work_limit) {
+        const auto it = ahead.find(pending.back().path);
+        if (it == ahead.end() || it->second.mark != Ahead::Mark::done) break;
+        if (pause_request && pause_request()) {
+          paused = true;
+          break;
+        }
+        pending.pop_back();
+        ahead_work -= it->second.done.work;
+        Processed p = std::move(it->second.done);
+        ahead.erase(it);
+        commit(std::move(p));
+      }
+      if (paused || stopped || pending.empty() || work >= work_limit) over = true;
+      if (over) break;
+      if (pause_request && pause_request()) {
+        paused = over = true;
+        break;
+      }
+      // The first box in depth-first order that nobody holds.
+      const Node* listed = nullptr;
+      for (auto k = pending.rbegin(); k != pending.rend() && !listed; ++k)
+        if (!ahead.count(k->path)) listed = &*k;
+      const std::string* open = open_paths.empty() ? nullptr : &*open_paths.begin();
+      if (!listed && !open) {
+        cv.wait(lock);
+        continue;
+      }
+      const bool from_list = !open || (listed && listed->path < *open);
+      const std::string path = from_list ? listed->path : *open;
+      if (path != pending.back().path && work + ahead_work >= work_limit) {
+        cv.wait(lock);
+        continue;
+      }
+      if (!budget.take_box()) {
+        stopped = over = true;
+        break;
+      }
+      Ahead& a = ahead[path];  // std::map: the reference survives other insertions and erasures
+      Node node = from_list ? *listed : std::move(a.node);
+      if (!from_list) open_paths.erase(path);
+      a.mark = Ahead::Mark::busy;
+      lock.unlock();
+      Processed p = process(c, certify, std::move(node), cut, stop);
+      lock.lock();
+      if (p.verdict == Verdict::stopped) {
+        // As if never taken: a listed box is still in the list; a half goes back to open.
+        stopped = over = true;
+        if (from_list) {
+          ahead.erase(path);
+        } else {
+          a = Ahead{Ahead::Mark::open, std::move(p.node), {}};
+          open_paths.insert(path);
+        }
+        break;
+      }
+      if (p.verdict == Verdict::split)
+        for (const Node* half : {&p.halves.first, &p.halves.second})
+          if (!ahead.count(half->path)) {
+            ahead[half->path] = Ahead{Ahead::Mark::open, *half, {}};
+            open_paths.insert(half->path);
+          }
+      a.mark = Ahead::Mark::done;
+      ahead_work += p.work;
+      a.done = std::move(p);
+      cv.notify_all();
+    }
+    cv.notify_all();
+    c.stop_when(nullptr);
+  };
+
+  // The helpers' contractors are kept across runs (a race has many short turns, and a clone
+  // of an LP strategy is not free); their counters are handed over after each run.
+  while (static_cast<int>(helpers.size()) < threads - 1) {
+    helpers.push_back(contractor.clone_sequence());
+    helper_certifiers.push_back(certifier ? certifier->clone() : nullptr);
+  }
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads - 1; ++t)
+    pool.emplace_back([&, t] {
+      worker(*helpers[t], helper_certifiers[t].get());
+      rigorous::release_thread_caches();
+    });
+  worker(contractor, certifier);
+  for (auto& t : pool) t.join();
+  for (auto& h : helpers) {
+    contractor.add_counters(*h);
+    h->set_counters(std::vector<prune::Counters>(h->counters().size()));
+  }
 }
 
 Result Search::result() {

@@ -163,8 +163,9 @@ struct Racer {
 // work (boxes + kLpWork per LP), until one finishes; its boxes are the result, as if it had
 // run alone. Turns double. After a first turn each, the candidate whose projected total work
 // (work / share of the search tree resolved) is smaller gets the turn and the others
-// kRaceShare of it, so a wrong projection costs a bounded factor. Each candidate's search
-// runs in one thread, so where it stops is deterministic.
+// kRaceShare of it, so a wrong projection costs a bounded factor. A turn ends at the box where
+// a one-thread depth-first search would end it, whatever the thread count (Search::run), so
+// the race is deterministic.
 constexpr double kRaceShare = 0.125;
 constexpr double kFirstTurn = 4000;
 
@@ -420,34 +421,7 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     const double share = k == race.lead && race.turn > kFirstTurn ? 1 : kRaceShare;
     return racers[k]->search->work() + race.turn * share;
   };
-  // With threads to spare, a round's candidates run side by side, one thread each: a
-  // candidate's turn depends only on its own search and on the lead chosen before the round,
-  // so the winner (the first in order to finish) and its boxes are those of the one-thread
-  // race. Only the losers' work differs: those after the winner ran their last turn too. A
-  // checkpoint's pauses need the one-thread order.
-  const bool side_by_side = run.threads > 1 && racers.size() > 1 && !run.checkpoints.enabled();
-  while (race.winner < 0 && side_by_side) {
-    if (race.turn > kFirstTurn) pick_lead();
-    std::vector<std::thread> pool;
-    std::vector<std::exception_ptr> errors(racers.size());  // thrown on, as the one-thread race would
-    for (size_t k = 0; k < racers.size(); ++k)
-      pool.emplace_back([&, k, target = target_of(k)] {
-        try {
-          racers[k]->search->run(1, target);
-        } catch (...) {
-          errors[k] = std::current_exception();
-        }
-        rigorous::release_thread_caches();
-      });
-    for (auto& t : pool) t.join();
-    for (auto& e : errors)
-      if (e) std::rethrow_exception(e);
-    for (size_t k = 0; k < racers.size() && race.winner < 0; ++k)
-      if (racers[k]->search->finished()) race.winner = static_cast<int>(k);
-    if (race.winner >= 0 || run.budget.exhausted()) break;
-    race.turn *= 2;
-  }
-  while (race.winner < 0 && !side_by_side) {
+  while (race.winner < 0) {
     Search& search = *racers[race.next]->search;
     if (racers.size() == 1) {
       search.run(run.threads);
@@ -456,7 +430,10 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
         if (race.next == 0 && race.turn > kFirstTurn) pick_lead();
         race.target = target_of(race.next);
       }
-      search.run(1, race.target);
+      // Every thread on this candidate's turn: the turn still ends where one thread ends it
+      // (look-ahead mode, branch_and_prune.cpp), so the race and its winner do not depend on
+      // the thread count.
+      search.run(run.threads, race.target);
     }
     if (search.finished()) {
       race.winner = static_cast<int>(race.next);
