@@ -288,11 +288,14 @@ bool Search::run(int threads, double work_limit) {
   const auto t0 = std::chrono::steady_clock::now();
   State& st = *s_;
   st.paused = false;
+  // A run to a work limit stops where one thread stops it: depth-first with the threads in
+  // look-ahead mode, breadth-first (where committing in order would serialise) on one thread.
   if (threads > 1 && work_limit > 0 && st.params.order == Order::depth_first) {
     st.run_ahead(threads, work_limit);
     st.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return done();
   }
+  if (work_limit > 0) threads = 1;
   const Params& params = st.params;
   std::mutex m;
   std::condition_variable cv;

@@ -122,9 +122,9 @@ class BoxLog {
 
 // A search that can be paused and resumed: run() processes boxes until the search is done,
 // the budget runs out, or `work` (boxes processed + kLpWork per LP solved) reaches a limit.
-// Between calls, the pending boxes are kept. Depth-first, a run to a work limit stops at the
-// same box on any number of threads (look-ahead mode, branch_and_prune.cpp); breadth-first,
-// only with one (the finished result never depends on the threads).
+// Between calls, the pending boxes are kept. A run to a work limit stops at the box where one
+// thread stops it: depth-first on every thread given (look-ahead mode, branch_and_prune.cpp),
+// breadth-first on one. A run without a limit ends with the same result on any thread count.
 class Search {
  public:
   Search(const Box& start, prune::Sequence& contractor, std::vector<int> split_dims, const Params& params,
