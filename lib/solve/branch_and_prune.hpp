@@ -165,9 +165,10 @@ constexpr double kLpWork = 15;
 // its cluster, refinement. On a curve (cyclohexane at sigma 0.1) that cost ~4 ms per box
 // when this was set, about 100 boxes of propagation; a strategy that leaves many such boxes
 // is not cheap, however fast it reached them. Since the curve verification got faster it is
-// ~0.5 ms (about 20 boxes), but 20 alone lost bicyclohexane's race to the strategy that left
-// 50 000 such boxes (172 s against 40 s): it must change together with the LP's price, which
-// is 2.8-20 boxes by system, not kLpWork (issue 9's note).
+// ~0.6 ms, about 27 boxes of the winning strategy (measured on cyclohexane and bicyclohexane),
+// but 20 alone lost bicyclohexane's race to the strategy that left 50 000 such boxes (172 s
+// against 40 s): it must change together with the LP's price, which is 2.8-20 boxes by
+// system, not kLpWork (issue 9's note).
 constexpr double kSolutionWork = 100;
 
 // With threads > 1 a Search processes boxes in parallel with clones of `contractor` (their
