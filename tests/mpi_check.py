@@ -2,6 +2,7 @@
 """Distributed runs (issue 14) against one process, through the CLI under mpirun.
 
   mpi_check.py MPIRUN LINKBOX same CASE [FLAGS...]  same roots, headline and boxes with 3 ranks
+  mpi_check.py MPIRUN LINKBOX lend                  a race's leader lends boxes, same boxes
   mpi_check.py MPIRUN LINKBOX limit                 a box limit stops every rank, pending boxes come back
   mpi_check.py MPIRUN LINKBOX interrupt             SIGINT to mpirun: partial JSON, non-zero exit
   mpi_check.py MPIRUN LINKBOX fault                 a rank that dies or hangs ends the run, exit != 0
@@ -180,6 +181,12 @@ def main():
             d = same(mpi, linkbox, tmp, "cases/linkages/6r-rigid.toml", ["--prune", "hc4,newton"])
             if d is not None:
                 check(d["boxes_given"] > 0, f"idle ranks got subtrees ({d['boxes_given']} boxes given)")
+        elif what == "lend":
+            # One sub-problem whose strategies race: its leader lends boxes to the idle ranks
+            # and the race still ends at one process's box.
+            d = same(mpi, linkbox, tmp, "cases/benchmarks/redeco8.toml", [])
+            if d is not None:
+                check(d["boxes_given"] > 0, f"the race lent boxes ({d['boxes_given']} boxes)")
         elif what == "limit":
             limit(mpi, linkbox, tmp)
         elif what == "interrupt":

@@ -3,7 +3,11 @@
 #include "formulate/load.hpp"
 #include "solve/branch_and_prune.hpp"
 #include "solve/solve_case.hpp"
+#include "solve/share.hpp"
 #include "solve/strategy.hpp"
+
+#include <mutex>
+#include <thread>
 #include "verify/certify_case.hpp"
 #include "verify/cluster.hpp"
 
@@ -149,6 +153,120 @@ TEST_CASE("a search cut at work limits stops at the same box on any number of th
         CHECK(one[k].solutions[j].box[d].lower() == three[k].solutions[j].box[d].lower());
         CHECK(one[k].solutions[j].box[d].upper() == three[k].solutions[j].box[d].upper());
       }
+    }
+  }
+}
+
+namespace {
+
+// Lends the race leader's boxes as a distributed run would, but to threads of this process:
+// each lent box's subtree is searched with records on and its records delivered back.
+struct ThreadLending final : solve::Sharing {
+  const formulate::Formulation& f;
+  const solve::RunOptions& options;
+  solve::Budget& budget;
+  int calls = 0;
+  bool wanted = false;  // as a steal request: asked() says so until lend() answers it
+  int lent = 0;
+  std::mutex m;
+  long lease = 0;  // as a distributed run's: records of recalled boxes are dropped
+  std::vector<std::thread> threads;
+  ThreadLending(const formulate::Formulation& f, const solve::RunOptions& o, solve::Budget& b) : f(f), options(o), budget(b) {}
+  bool asked() override {  // now and then, as steal requests come
+    if (!wanted && ++calls % 7 == 0) wanted = true;
+    return wanted;
+  }
+  bool give(size_t, const std::vector<std::string>&, solve::Search&) override { return false; }
+  bool lend(size_t i, const std::vector<std::string>& strategy, solve::Search& search) override {
+    wanted = false;
+    auto node = search.lend();
+    if (!node) return false;
+    ++lent;
+    threads.emplace_back([this, i, strategy, n = *node, &search, lease = lease] {
+      solve::Piece p = solve::run_subtree(f, i, options, budget, nullptr, strategy, {n}, true);
+      std::lock_guard lock(m);
+      if (lease == this->lease) search.deliver(std::move(p.state.records), p.counters);  // else recalled
+    });
+    return true;
+  }
+  void recall() override {
+    std::lock_guard lock(m);
+    ++lease;
+  }
+  void end_lending() override {
+    for (auto& t : threads) t.join();
+    threads.clear();
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a race whose leader lends boxes ends as the one-process race", "[strategies]") {
+  // The owner's front takes the lent subtrees' records in depth-first order (waiting for
+  // them), so every turn ends at the same box: the same winner, work, counts and boxes.
+  for (const char* file : {"cases/linkages/6r-rigid.toml", "cases/benchmarks/caprasse.toml"}) {
+    INFO(file);
+    const formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + file);
+    solve::RunOptions o;
+    o.progress = false;
+    solve::SubResult one, lent;
+    solve::Piece piece;
+    {
+      solve::Budget budget(o.params);
+      REQUIRE(solve::run_subproblem(*c.formulation, 0, o, budget, nullptr, one, piece));
+    }
+    o.threads = 2;  // the lender's own helpers too
+    solve::Budget budget(o.params);
+    ThreadLending lending(*c.formulation, o, budget);
+    REQUIRE(solve::run_subproblem(*c.formulation, 0, o, budget, &lending, lent, piece));
+    CHECK(lending.lent > 0);
+    REQUIRE(one.race.size() == 2);
+    CHECK(one.race == lent.race);
+    CHECK(one.strategy == lent.strategy);
+    CHECK(one.stats.processed == lent.stats.processed);
+    CHECK(one.stats.split == lent.stats.split);
+    CHECK(one.stats.shrinks == lent.stats.shrinks);
+    CHECK(one.certified == lent.certified);
+    REQUIRE(one.solutions.size() == lent.solutions.size());
+    for (size_t k = 0; k < one.solutions.size(); ++k)
+      for (size_t j = 0; j < one.solutions[k].size(); ++j) {
+        CHECK(one.solutions[k][j].lower() == lent.solutions[k][j].lower());
+        CHECK(one.solutions[k][j].upper() == lent.solutions[k][j].upper());
+      }
+  }
+}
+
+TEST_CASE("a lending race stopped by a box limit keeps every root in a solution or pending box", "[strategies]") {
+  // The lent boxes stay listed: whatever the limit cuts off, the pending boxes (lent ones and
+  // halves from records included) and the solutions still cover every root.
+  const formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/benchmarks/caprasse.toml");
+  solve::RunOptions o;
+  o.progress = false;
+  solve::SubResult full;
+  solve::Piece piece;
+  {
+    solve::Budget budget(o.params);
+    REQUIRE(solve::run_subproblem(*c.formulation, 0, o, budget, nullptr, full, piece));
+  }
+  auto inside = [](const Box& a, const Box& b) {
+    for (size_t d = 0; d < a.size(); ++d)
+      if (a[d].lower() < b[d].lower() || a[d].upper() > b[d].upper()) return false;
+    return true;
+  };
+  for (long limit : {full.stats.processed / 3, 2 * full.stats.processed / 3}) {
+    INFO("max boxes " << limit);
+    o.params.max_boxes = limit;
+    solve::Budget budget(o.params);
+    ThreadLending lending(*c.formulation, o, budget);
+    solve::SubResult part;
+    REQUIRE(solve::run_subproblem(*c.formulation, 0, o, budget, &lending, part, piece));
+    CHECK_FALSE(part.complete);
+    CHECK(lending.lent > 0);
+    for (const Box& root : full.solutions) {
+      bool covered = false;
+      for (const Box& b : part.solutions) covered = covered || inside(root, b);
+      for (const Box& b : part.pending) covered = covered || inside(root, b);
+      CHECK(covered);
     }
   }
 }

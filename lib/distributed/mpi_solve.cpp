@@ -14,6 +14,8 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <limits>
+#include <map>
 #include <thread>
 #include <unistd.h>
 
@@ -113,7 +115,12 @@ struct Slot {
   long unit = -1;                  // under m
   std::atomic<bool> steal{false};  // rank 0 asks for a box of `unit`
   long steal_for = -1;             // under m: asked before the unit started
-  std::atomic<bool> shares{false};  // `unit`'s search gives boxes (it does not race)
+  std::atomic<bool> shares{false};  // `unit`'s search gives or lends boxes
+  size_t sub = 0;                   // under m: `unit`'s sub-problem
+  bool record = false;              // under m: `unit` searches lent boxes, with records
+  solve::Search* lender = nullptr;  // under m: `unit`'s race lent boxes; records go to it
+  long lease = 0;       // under m: the lender's boxes lent since its last recall carry this
+  long unit_lease = 0;  // under m: a record unit: the lease its records answer
   std::thread thread;
 };
 
@@ -129,6 +136,8 @@ struct Running {
 
 struct SubState {
   int live = 0;  // its units under way (the sub-problem and its subtrees)
+  int owner = -1;         // the worker whose race lent boxes: their records go to it
+  long owner_unit = -1;   // and its unit
   std::optional<Piece> merged;
   std::optional<SubResult> result;
 };
@@ -172,8 +181,72 @@ class Process {
       }
       json head = piece_head("gift", gift);
       head["slot"] = k;
+      {
+        std::lock_guard lock(s.m);
+        head["record"] = s.record;  // a subtree of a lent box: its pieces keep records too
+        head["lease"] = s.unit_lease;
+      }
       p.post(0, {0, head, gave ? piece_text(gift) : ""});
       return gave;
+    }
+    // A race's leader: the box stays in its list; the records of its subtree come back here
+    // (handle "records") and go to `search`.
+    bool lend(size_t i, const std::vector<std::string>& strategy, solve::Search& search) override {
+      Slot& s = *p.slots_[k];
+      s.steal.store(false);
+      const auto node = search.lend();
+      Piece gift{i, strategy, {}, {}, {}};
+      if (node) gift.state.pending.push_back(*node);
+      long lease;
+      {
+        std::lock_guard lock(s.m);
+        s.lender = &search;
+        lease = s.lease;
+      }
+      json head = piece_head("gift", gift);
+      head["slot"] = k;
+      head["lend"] = true;
+      head["lease"] = lease;
+      p.post(0, {0, head, node ? piece_text(gift) : ""});
+      return node.has_value();
+    }
+    void recall() override {
+      Slot& s = *p.slots_[k];
+      std::lock_guard lock(s.m);
+      s.lender = nullptr;
+      ++s.lease;  // records of the boxes lent so far are dropped on arrival
+      p.post(0, {0, {{"t", "recall"}, {"sub", s.sub}, {"below", s.lease}}, ""});
+    }
+    void end_lending() override {
+      Slot& s = *p.slots_[k];
+      std::lock_guard lock(s.m);
+      s.lender = nullptr;
+      ++s.lease;
+    }
+    void send_records(size_t i, std::vector<solve::SearchState::Record> records) override {
+      Slot& s = *p.slots_[k];
+      long lease;
+      {
+        std::lock_guard lock(s.m);
+        lease = s.unit_lease;
+      }
+      Piece part{i, {}, {}, {}, {}};
+      part.state.records = std::move(records);
+      p.post(0, {0, {{"t", "records"}, {"sub", i}, {"lease", lease}}, piece_text(part)});
+    }
+    bool abandoned() override {
+      Slot& s = *p.slots_[k];
+      size_t sub;
+      long lease;
+      {
+        std::lock_guard lock(s.m);
+        if (!s.record) return false;
+        sub = s.sub;
+        lease = s.unit_lease;
+      }
+      std::lock_guard lock(p.abandoned_m_);
+      const auto it = p.abandoned_.find(sub);
+      return it != p.abandoned_.end() && lease < it->second;
     }
   };
 
@@ -199,15 +272,21 @@ class Process {
       Message m = wait(slot);
       if (m.head.at("t") == "quit") return;
       const long unit = m.head.at("unit");
+      const std::string kind = m.head.at("kind");
+      const size_t i = m.head.at("sub");
+      const bool record = m.head.value("record", false);
       {
         std::lock_guard lock(slot.m);
         slot.unit = unit;
         slot.steal = slot.steal_for == unit;
         slot.shares = false;
+        slot.sub = i;
+        slot.record = record;
+        slot.unit_lease = m.head.value("lease", 0L);
+        slot.lender = nullptr;
       }
-      const std::string kind = m.head.at("kind");
-      const size_t i = m.head.at("sub");
-      Message done{0, {{"t", "done"}, {"slot", k}, {"unit", unit}, {"sub", i}}, ""};
+      Message done{0, {{"t", "done"}, {"slot", k}, {"unit", unit}, {"sub", i}, {"record", record},
+                       {"lease", m.head.value("lease", 0L)}}, ""};
       try {
         if (kind == "sub" && budget_.exhausted()) {
           // Queued here when the run stopped: reported as one process reports a sub-problem
@@ -225,7 +304,7 @@ class Process {
           if (kind == "tree") {
             Piece given = piece_from(m);
             piece = solve::run_subtree(f_, i, unit_options_, budget_, &sharing, given.strategy,
-                                       std::move(given.state.pending));
+                                       std::move(given.state.pending), record);
           }
           done.head["whole"] = whole;
           if (whole) {
@@ -245,6 +324,8 @@ class Process {
       {
         std::lock_guard lock(slot.m);
         slot.unit = -1;
+        slot.lender = nullptr;
+        slot.record = false;
       }
       post(0, std::move(done));
     }
@@ -295,6 +376,8 @@ class Process {
   bool leaving_ = false;     // this rank's part is over
   bool told_stop_ = false;   // rank 0 knows that this rank's budget ran out
   std::optional<std::pair<int, std::string>> failure_;  // an error that ends the run
+  std::mutex abandoned_m_;
+  std::map<size_t, long> abandoned_;  // per sub-problem: lent boxes of leases below this are not wanted
 
   // rank 0
   std::vector<SubState> subs_;
@@ -411,9 +494,16 @@ void Process::coordinate(const Message& m) {
       victim.dry_until = budget_.elapsed() + kDryWait;
     } else {
       Piece gift = piece_from(m);
-      ++subs_[gift.subproblem].live;
+      SubState& s = subs_[gift.subproblem];
+      ++s.live;
       figures_.boxes_given += static_cast<long>(gift.state.pending.size());
-      send_unit(thief, "tree", gift.subproblem, {{"strategy", gift.strategy}}, m.payload);
+      json extra = {{"strategy", gift.strategy}};
+      if (m.head.value("lend", false)) s.owner = worker_of(m), s.owner_unit = victim.unit;
+      if (m.head.value("lend", false) || m.head.value("record", false)) {
+        extra["record"] = true;
+        extra["lease"] = m.head.value("lease", 0L);
+      }
+      send_unit(thief, "tree", gift.subproblem, extra, m.payload);
     }
   } else if (t == "done") {
     const int w = worker_of(m);
@@ -421,8 +511,18 @@ void Process::coordinate(const Message& m) {
     queue_[w].pop_front();
     if (r.thief >= 0) waiting_[r.thief] = 0;  // asked too late: the unit had ended
     SubState& s = subs_[r.sub];
-    if (m.head.at("whole").get<bool>()) {
+    if (m.head.value("record", false)) {
+      // A lent subtree: its records go to the race that lent it (the race's own result holds
+      // everything, so nothing is merged here); dropped once that race is over.
+      if (s.owner >= 0 && !s.result)
+        wire_.send(s.owner / slots_per_rank_, {0, {{"t", "records"}, {"slot", s.owner % slots_per_rank_}, {"unit", s.owner_unit},
+                                                   {"lease", m.head.value("lease", 0L)}}, m.payload});
+    } else if (m.head.at("whole").get<bool>()) {
       s.result = solve::sub_checkpoint_from_text(m.payload).result;
+      // Lent subtrees still searched are no longer wanted: their searches may stop.
+      if (s.owner >= 0 && s.live > 1)
+        for (int rank = 0; rank < world_.size(); ++rank)
+          wire_.send(rank, {0, {{"t", "abandon"}, {"sub", r.sub}, {"below", std::numeric_limits<long>::max()}}, ""});
     } else {
       Piece piece = piece_from(m);
       if (s.merged) s.merged->merge(std::move(piece));
@@ -458,6 +558,26 @@ void Process::handle(Message m) {
     const long unit = m.head.at("unit");
     if (s.unit == unit) s.steal.store(true);
     else s.steal_for = unit;  // queued behind the unit that runs: asked as soon as it starts
+  } else if (t == "records" && !m.head.contains("unit")) {
+    // rank 0: a batch of a lent subtree's records, on its way to the lender
+    const SubState& s = subs_.at(m.head.at("sub").get<size_t>());
+    if (s.owner >= 0 && !s.result)
+      wire_.send(s.owner / slots_per_rank_, {0, {{"t", "records"}, {"slot", s.owner % slots_per_rank_}, {"unit", s.owner_unit},
+                                                 {"lease", m.head.at("lease")}}, m.payload});
+  } else if (t == "recall") {
+    // rank 0: the race's lender lost the lead; the searches of its lent boxes may stop
+    for (int rank = 0; rank < world_.size(); ++rank)
+      wire_.send(rank, {0, {{"t", "abandon"}, {"sub", m.head.at("sub")}, {"below", m.head.at("below")}}, ""});
+  } else if (t == "records") {
+    const solve::SubCheckpoint c = solve::sub_checkpoint_from_text(m.payload);
+    Slot& s = *slots_.at(m.head.at("slot").get<int>());
+    std::lock_guard lock(s.m);
+    if (s.unit == m.head.at("unit").get<long>() && s.lender && s.lease == m.head.at("lease").get<long>())
+      s.lender->deliver(c.searches.at(0).records, c.counters.at(0));
+  } else if (t == "abandon") {
+    std::lock_guard lock(abandoned_m_);
+    long& below = abandoned_[m.head.at("sub").get<size_t>()];
+    below = std::max(below, m.head.at("below").get<long>());
   } else if (t == "stop") {
     budget_.halt(m.head.at("why").get<std::string>().c_str());
     told_stop_ = true;

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <set>
 #include <thread>
+#include <utility>
 
 namespace linkbox::solve {
 
@@ -114,14 +115,17 @@ struct Processed {
   double work = 0;
   Stats stats;  // this box's counts
   std::pair<Node, Node> halves;  // when split
+  int dim = -1;                  // the side bisected
 };
 
 // A box processed ahead of its turn in depth-first order (look-ahead mode of Search::run),
 // or one a helper thread is shrinking, or a child of such a box waiting for a helper.
 struct Ahead {
-  enum class Mark { open, busy, done } mark = Mark::open;
+  // remote: lent (or below a lent box), its record not back yet.
+  enum class Mark { open, busy, done, remote } mark = Mark::open;
   Node node;       // open
   Processed done;  // done
+  bool delivered = false;  // done by another search (not in ahead_work)
 };
 
 }  // namespace
@@ -158,6 +162,13 @@ struct Search::State {
   double ahead_work = 0;
   std::vector<std::unique_ptr<prune::Sequence>> helpers;
   std::vector<std::unique_ptr<Certifier>> helper_certifiers;
+  // Look-ahead and lending: `m` guards the above against deliver() from another thread.
+  std::mutex m;
+  std::condition_variable cv;
+  bool lent = false;  // some box was lent: runs to a limit go through run_ahead
+  bool recording = false;
+  std::vector<SearchState::Record> records;
+  std::vector<prune::Counters> delivered_counters;
 
   Processed process(prune::Sequence& c, Certifier* certify, Node node, bool& cut, const std::function<bool()>& stop);
   void commit(Processed&& p);
@@ -205,6 +216,7 @@ SearchState Search::state() const {
   r.stats.seconds = s_->seconds;
   r.work = s_->work;
   r.volume_done = s_->volume_done;
+  r.records = s_->records;
   return r;
 }
 
@@ -216,12 +228,89 @@ void Search::set_state(SearchState state) {
   s_->stats.seconds = 0;
   s_->work = state.work;
   s_->volume_done = state.volume_done;
+  s_->records = std::move(state.records);
   s_->volume_pending = 0;
   for (auto& n : s_->pending) s_->volume_pending += volume_ratio(s_->start, n.box, s_->split_dims);
   s_->stopped = false;
+  std::lock_guard lock(s_->m);
   s_->ahead.clear();
   s_->open_paths.clear();
   s_->ahead_work = 0;
+  s_->lent = false;
+}
+
+void Search::record_boxes() { s_->recording = true; }
+size_t Search::recorded() const { return s_->records.size(); }
+std::vector<SearchState::Record> Search::take_records() { return std::exchange(s_->records, {}); }
+
+std::optional<SearchState::Node> Search::lend() {
+  State& st = *s_;
+  std::lock_guard lock(st.m);
+  // The last box in depth-first order that nobody holds: a listed one (not the top), or a half
+  // of a box shrunk ahead.
+  const Node* listed = nullptr;
+  for (size_t k = 0; k + 1 < st.pending.size() && !listed; ++k)
+    if (!st.ahead.count(st.pending[k].path)) listed = &st.pending[k];
+  const std::string* open = st.open_paths.empty() ? nullptr : &*st.open_paths.rbegin();
+  if (!listed && !open) return std::nullopt;
+  st.lent = true;
+  if (listed && (!open || listed->path > *open)) {
+    st.ahead[listed->path].mark = Ahead::Mark::remote;
+    return *listed;
+  }
+  Ahead& a = st.ahead[*open];
+  Node node = std::move(a.node);
+  a.mark = Ahead::Mark::remote;
+  st.open_paths.erase(std::prev(st.open_paths.end()));
+  return node;
+}
+
+void Search::deliver(std::vector<SearchState::Record> records, const std::vector<prune::Counters>& counters) {
+  State& st = *s_;
+  std::lock_guard lock(st.m);
+  for (auto& r : records) {
+    Processed p;
+    p.verdict = r.outcome == 'e' ? Verdict::empty : r.outcome == 's' ? Verdict::solution : r.outcome == 'c' ? Verdict::certified : Verdict::split;
+    p.node.path = r.path;
+    p.node.box = std::move(r.box);
+    p.work = r.work;
+    p.volume = r.volume;
+    p.stats = r.stats;
+    if (p.verdict == Verdict::split) {
+      if (r.dim < 0 || r.dim >= static_cast<int>(p.node.box.size())) throw std::logic_error("a split record without its side");
+      auto [a, b] = bisect(p.node.box, r.dim);
+      p.halves = {{std::move(a), r.path + '0', r.backoff.child()}, {std::move(b), r.path + '1', r.backoff.child()}};
+      p.dim = r.dim;
+    }
+    // A record arrives before its parent's when pieces come back out of order; a box someone
+    // here holds is not awaited.
+    const auto awaited = st.ahead.find(r.path);
+    if (awaited != st.ahead.end() && awaited->second.mark != Ahead::Mark::remote) continue;
+    if (p.verdict == Verdict::split)
+      for (const Node* half : {&p.halves.first, &p.halves.second})
+        if (!st.ahead.count(half->path)) st.ahead[half->path].mark = Ahead::Mark::remote;  // its record is on its way
+    Ahead& a = st.ahead[r.path];
+    a.mark = Ahead::Mark::done;
+    a.delivered = true;
+    a.done = std::move(p);
+  }
+  if (st.delivered_counters.size() < counters.size()) st.delivered_counters.resize(counters.size());
+  for (size_t k = 0; k < counters.size(); ++k) st.delivered_counters[k] += counters[k];
+  st.cv.notify_all();
+}
+
+void Search::unlend() {
+  State& st = *s_;
+  std::lock_guard lock(st.m);
+  // A remote mark is on a listed box, or on a half of a delivered split (listed once that is
+  // committed): either way the box is at hand.
+  for (auto it = st.ahead.begin(); it != st.ahead.end();)
+    it = it->second.mark == Ahead::Mark::remote ? st.ahead.erase(it) : std::next(it);
+}
+
+std::vector<prune::Counters> Search::delivered_counters() const {
+  std::lock_guard lock(s_->m);
+  return s_->delivered_counters;
 }
 
 Processed Search::State::process(prune::Sequence& c, Certifier* certify, Node node, bool& cut,
@@ -256,6 +345,7 @@ Processed Search::State::process(prune::Sequence& c, Certifier* certify, Node no
     const int dim = bisector ? bisector->choose(node.box, depth) : widest_dimension(node.box, split_dims);
     auto [a, b] = bisect(node.box, dim);
     p.halves = {{std::move(a), node.path + '0', node.backoff.child()}, {std::move(b), node.path + '1', node.backoff.child()}};
+    p.dim = dim;
   }
   p.node = std::move(node);
   return p;
@@ -263,6 +353,13 @@ Processed Search::State::process(prune::Sequence& c, Certifier* certify, Node no
 
 void Search::State::commit(Processed&& p) {
   const Verdict v = p.verdict;
+  if (recording) {
+    SearchState::Record r{p.node.path, v == Verdict::empty ? 'e' : v == Verdict::solution ? 's' : v == Verdict::certified ? 'c' : 'x',
+                          p.work, p.volume, p.stats, {}, -1, {}};
+    if (v != Verdict::empty) r.box = p.node.box;
+    if (v == Verdict::split) r.dim = p.dim, r.backoff = p.node.backoff;
+    records.push_back(std::move(r));
+  }
   work += p.work;
   stats += p.stats;
   volume_pending -= p.volume;
@@ -290,7 +387,7 @@ bool Search::run(int threads, double work_limit) {
   st.paused = false;
   // A run to a work limit stops where one thread stops it: depth-first with the threads in
   // look-ahead mode, breadth-first (where committing in order would serialise) on one thread.
-  if (threads > 1 && work_limit > 0 && st.params.order == Order::depth_first) {
+  if ((threads > 1 || st.lent) && work_limit > 0 && st.params.order == Order::depth_first) {
     st.run_ahead(threads, work_limit);
     st.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return done();
@@ -373,8 +470,6 @@ bool Search::run(int threads, double work_limit) {
 // threads shrink ahead only while the work committed and held stays below the limit: a turn
 // leaves at most one box per thread ahead of its end, the waste when a raced candidate loses.
 void Search::State::run_ahead(int threads, double work_limit) {
-  std::mutex m;
-  std::condition_variable cv;
   bool over = false;
 
   auto worker = [&](prune::Sequence& c, Certifier* certify) {
@@ -392,7 +487,7 @@ void Search::State::run_ahead(int threads, double work_limit) {
           break;
         }
         pending.pop_back();
-        ahead_work -= it->second.done.work;
+        if (!it->second.delivered) ahead_work -= it->second.done.work;
         Processed p = std::move(it->second.done);
         ahead.erase(it);
         commit(std::move(p));
@@ -402,6 +497,16 @@ void Search::State::run_ahead(int threads, double work_limit) {
       if (pause_request && pause_request()) {
         paused = over = true;
         break;
+      }
+      // The top was lent and its record is not back: wait, but not past a limit.
+      const auto top = ahead.find(pending.back().path);
+      if (top != ahead.end() && top->second.mark == Ahead::Mark::remote) {
+        if (budget.exhausted() || budget.stop_now()) {
+          stopped = over = true;
+          break;
+        }
+        cv.wait_for(lock, std::chrono::milliseconds(20));
+        continue;
       }
       // The first box in depth-first order that nobody holds.
       const Node* listed = nullptr;

@@ -13,6 +13,7 @@
 #include <span>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,8 +79,20 @@ struct SearchState {
     Box box;
     bool certified = false;
   };
+  // One box as the search committed it, for another search to replay: a lent subtree's boxes
+  // come back to the lender as these (Search::lend, Search::deliver).
+  struct Record {
+    std::string path;
+    char outcome = 'e';  // 'e' empty, 's' solution, 'c' certified solution, 'x' split
+    double work = 0, volume = 0;
+    Stats stats;
+    Box box;       // a solution's box; a split's box before bisection
+    int dim = -1;  // split: the side bisected (the halves follow, as one process makes them)
+    prune::Sequence::Backoff backoff;  // split: the box's, its halves take its child()
+  };
   std::vector<Node> pending;  // in list order (the back is taken first depth-first)
   std::vector<Found> solutions;
+  std::vector<Record> records;  // when recording (Search::record_boxes), in commit order
   Stats stats;
   double work = 0;
   double volume_done = 0;
@@ -151,6 +164,23 @@ class Search {
   void log_to(BoxLog* log, size_t subproblem, int candidate);
   SearchState state() const;  // between runs
   void set_state(SearchState state);
+
+  // Lending, for a search whose turns must end where one process ends them (a race spread over
+  // processes). lend() takes the last box in depth-first order that nobody holds (never the
+  // next one), to be searched elsewhere with record_boxes() on. deliver() (any thread,
+  // any time) hands back that search's records (in any order, in pieces), and the counters
+  // of the contractors that made them. The lender's depth-first front takes each record as if
+  // it had shrunk the box itself, and waits when it reaches a lent box whose record is not
+  // back: so every stop falls where one process's would. Between runs only (lend).
+  std::optional<SearchState::Node> lend();
+  void deliver(std::vector<SearchState::Record> records, const std::vector<prune::Counters>& counters);
+  // Takes every lent box back: the front shrinks them itself (records still on the way would
+  // only repeat what it finds; the caller stops taking them).
+  void unlend();
+  std::vector<prune::Counters> delivered_counters() const;  // summed over deliver()
+  void record_boxes();
+  size_t recorded() const;  // records kept so far (asked between boxes too)
+  std::vector<SearchState::Record> take_records();  // between runs: to send them on early
   Result result();  // once run() returned true
 
  private:

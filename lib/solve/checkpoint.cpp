@@ -93,18 +93,46 @@ std::vector<prune::Counters> counters_in(const json& j) {
   return cs;
 }
 
+json node_out(const SearchState::Node& n) { return {n.path, n.backoff.level, n.backoff.skip, box_out(n.box)}; }
+SearchState::Node node_in(const json& n) {
+  return {box_in(n.at(3)), n.at(0).get<std::string>(), {n.at(1).get<int>(), n.at(2).get<int>()}};
+}
+
 json search_out(const SearchState& s) {
   json pending = json::array(), found = json::array();
-  for (auto& n : s.pending) pending.push_back({n.path, n.backoff.level, n.backoff.skip, box_out(n.box)});
+  for (auto& n : s.pending) pending.push_back(node_out(n));
   for (auto& f : s.solutions) found.push_back({f.path, f.certified, box_out(f.box)});
-  return {{"pending", pending}, {"solutions", found}, {"stats", stats_out(s.stats)},
-          {"work", num(s.work)}, {"volume_done", num(s.volume_done)}};
+  json j = {{"pending", pending}, {"solutions", found}, {"stats", stats_out(s.stats)},
+            {"work", num(s.work)}, {"volume_done", num(s.volume_done)}};
+  if (!s.records.empty()) {
+    json records = json::array();
+    for (auto& r : s.records)
+      records.push_back({r.path, std::string(1, r.outcome), num(r.work), num(r.volume), stats_out(r.stats), box_out(r.box),
+                         r.dim, r.backoff.level, r.backoff.skip});
+    j["records"] = std::move(records);
+  }
+  return j;
 }
 SearchState search_in(const json& j) {
   SearchState s;
-  for (auto& n : j.at("pending"))
-    s.pending.push_back({box_in(n.at(3)), n.at(0).get<std::string>(), {n.at(1).get<int>(), n.at(2).get<int>()}});
+  for (auto& n : j.at("pending")) s.pending.push_back(node_in(n));
   for (auto& f : j.at("solutions")) s.solutions.push_back({f.at(0).get<std::string>(), box_in(f.at(2)), f.at(1).get<bool>()});
+  if (j.contains("records"))
+    for (auto& r : j.at("records")) {
+      SearchState::Record x;
+      x.path = r.at(0).get<std::string>();
+      const std::string outcome = r.at(1).get<std::string>();
+      if (outcome.size() != 1 || std::string("escx").find(outcome[0]) == std::string::npos)
+        throw std::invalid_argument("a box record with outcome '" + outcome + "'");
+      x.outcome = outcome[0];
+      x.work = num(r.at(2));
+      x.volume = num(r.at(3));
+      x.stats = stats_in(r.at(4));
+      x.box = box_in(r.at(5));
+      x.dim = r.at(6).get<int>();
+      x.backoff = {r.at(7).get<int>(), r.at(8).get<int>()};
+      s.records.push_back(std::move(x));
+    }
   s.stats = stats_in(j.at("stats"));
   s.work = num(j.at("work"));
   s.volume_done = num(j.at("volume_done"));

@@ -25,8 +25,9 @@ struct Piece {
   void merge(Piece&& other);
 };
 
-// Asked between two boxes of a search that is not racing (a race decides by the order in which
-// one process meets the boxes, so its searches stay whole).
+// Asked between two boxes of a search: one that does not race gives boxes away; a race's leader
+// lends them (a race decides by the order in which one process meets the boxes, so the lent
+// boxes' outcomes come back to it, Search::lend).
 class Sharing {
  public:
   virtual ~Sharing() = default;
@@ -34,6 +35,22 @@ class Sharing {
   // The paused search's pending boxes may be taken (Search::state / set_state), or none: true
   // when some were.
   virtual bool give(size_t subproblem, const std::vector<std::string>& strategy, Search& search) = 0;
+  // A race's leader lends instead (Search::lend): the box stays in its list and its subtree's
+  // records come back through Search::deliver, so the race runs as in one process. True when
+  // a box was lent. The default lends nothing.
+  virtual bool lend(size_t /*subproblem*/, const std::vector<std::string>& /*strategy*/, Search& /*search*/) {
+    return false;
+  }
+  // The lender lost the lead: the searches of its lent boxes may stop, and their records, still
+  // on the way, are no longer taken (the lender shrinks those boxes itself, Search::unlend).
+  virtual void recall() {}
+  // The race is over: its searches take no more deliveries.
+  virtual void end_lending() {}
+  // A search of lent boxes whose records nobody wants any more (the race ended): it may stop.
+  virtual bool abandoned() { return false; }
+  // A search of lent boxes sends its records on as it goes (the lender's front may be
+  // waiting for them), not only with its piece at the end.
+  virtual void send_records(size_t /*subproblem*/, std::vector<SearchState::Record> /*records*/) {}
 };
 
 // Runs sub-problem i as solve_case does (its race when "auto" has several candidates).
@@ -43,9 +60,11 @@ class Sharing {
 bool run_subproblem(const formulate::Formulation& formulation, size_t i, const RunOptions& options, Budget& budget,
                     Sharing* sharing, SubResult& s, Piece& piece);
 
-// Searches pending boxes of sub-problem i (a subtree given away) with `strategy`.
+// Searches pending boxes of sub-problem i (a subtree given away, or lent: `record` keeps a
+// record of every box, for the lender) with `strategy`.
 Piece run_subtree(const formulate::Formulation& formulation, size_t i, const RunOptions& options, Budget& budget,
-                  Sharing* sharing, std::vector<std::string> strategy, std::vector<SearchState::Node> nodes);
+                  Sharing* sharing, std::vector<std::string> strategy, std::vector<SearchState::Node> nodes,
+                  bool record = false);
 
 // Sub-problem i's result from all its pieces merged, as the single search would have ended it:
 // solutions in search-tree order, refinement when complete, residuals.

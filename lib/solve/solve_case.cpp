@@ -398,13 +398,19 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     seen = run.checkpoints.generation();
     run.checkpoints.deposit(i, c, running);
   };
-  // Only a search that does not race gives boxes away.
+  // A search that does not race gives boxes away; a race's leader lends them (share.hpp), one
+  // candidate only: the first to lend.
   Sharing* sharing = racers.size() == 1 ? run.sharing : nullptr;
+  Sharing* lending = racers.size() > 1 ? run.sharing : nullptr;
+  int lender = -1;
   bool gave = false;
-  if (run.checkpoints.enabled() || sharing)
-    for (auto& r : racers)
-      r->search->pause_when([&] {
-        return (run.checkpoints.enabled() && run.checkpoints.generation() > seen) || (sharing && sharing->asked());
+  if (run.checkpoints.enabled() || sharing || lending)
+    for (size_t k = 0; k < racers.size(); ++k)
+      racers[k]->search->pause_when([&, k] {
+        if (run.checkpoints.enabled() && run.checkpoints.generation() > seen) return true;
+        if (sharing) return sharing->asked();
+        const bool may_lend = lender < 0 ? k == race.lead && race.turn > kFirstTurn : static_cast<int>(k) == lender;
+        return lending && may_lend && lending->asked();
       });
   save(true);
 
@@ -428,6 +434,13 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     } else {
       if (race.target < 0) {
         if (race.next == 0 && race.turn > kFirstTurn) pick_lead();
+        if (lender >= 0 && race.lead != static_cast<size_t>(lender)) {
+          // The lender lost the lead: its lent boxes' searches would serve a likely loser. It
+          // takes them back (it may never need them); the new leader lends from now on.
+          lending->recall();
+          racers[lender]->search->unlend();
+          lender = -1;
+        }
         race.target = target_of(race.next);
       }
       // Every thread on this candidate's turn: the turn still ends where one thread ends it
@@ -442,6 +455,8 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     if (run.budget.exhausted()) break;
     if (search.paused()) {
       if (sharing && sharing->asked()) gave = sharing->give(i, racers[0]->strategy.names, search) || gave;
+      if (lending && lending->asked() && lending->lend(i, racers[race.next]->strategy.names, search))
+        lender = static_cast<int>(race.next);
       save(true);
       continue;
     }
@@ -450,6 +465,15 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
       race.next = 0;
       race.turn *= 2;
     }
+  }
+
+  if (lending) lending->end_lending();
+  // The lent boxes' contractors worked for the lender: their counters are its own.
+  if (lender >= 0 && race.winner == lender) {
+    auto counters = racers[lender]->strategy.sequence->counters();
+    const auto delivered = racers[lender]->search->delivered_counters();
+    for (size_t k = 0; k < counters.size() && k < delivered.size(); ++k) counters[k] += delivered[k];
+    racers[lender]->strategy.sequence->set_counters(std::move(counters));
   }
 
   // Stopped by a limit: what the most advanced candidate has, and the state to resume from.
@@ -623,14 +647,27 @@ struct Resumed {
 
 }  // namespace
 
+// Records of a lent subtree go to the lender in batches of this many boxes (a few hundred
+// kilobytes of JSON), so that they are there when its front gets to them.
+constexpr size_t kRecordBatch = 512;
+
 Piece run_subtree(const formulate::Formulation& formulation, size_t i, const RunOptions& options, Budget& budget,
-                  Sharing* sharing, std::vector<std::string> strategy, std::vector<SearchState::Node> nodes) {
+                  Sharing* sharing, std::vector<std::string> strategy, std::vector<SearchState::Node> nodes, bool record) {
   SearchState start;
   start.pending = std::move(nodes);
   Resumed r(formulation, i, options, budget, strategy, std::move(start));
-  if (sharing) r.search.pause_when([sharing] { return sharing->asked(); });
-  while (!r.search.run(options.threads))
-    if (r.search.paused()) sharing->give(i, strategy, r.search);
+  if (record) r.search.record_boxes();
+  Search& search = r.search;
+  if (sharing)
+    search.pause_when([sharing, &search, record] {
+      return sharing->asked() || sharing->abandoned() || (record && search.recorded() >= kRecordBatch);
+    });
+  while (!search.run(options.threads)) {
+    if (!search.paused()) continue;
+    if (sharing->abandoned()) break;
+    if (record && search.recorded() >= kRecordBatch) sharing->send_records(i, search.take_records());
+    if (sharing->asked()) sharing->give(i, strategy, search);
+  }
   return {i, std::move(strategy), r.search.state(), r.ran->strategy.sequence->counters(), {}};
 }
 

@@ -27,12 +27,13 @@ from collections import defaultdict
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-# case, flags: the three cases of the issue; the linkages also with their auto winner named,
-# since a raced sub-problem is not split (README, Distributed runs).
+# case, flags: the three cases of the issue; the linkages both as "auto" runs them (a race, whose
+# leader lends boxes) and with a strategy named (no race: boxes given away).
 CASES = [
     ("four-loop", "cases/spherical/four-loop.toml", []),
     ("6r-rigid", "cases/linkages/6r-rigid.toml", []),
     ("6r-rigid --prune hc4,newton", "cases/linkages/6r-rigid.toml", ["--prune", "hc4,newton"]),
+    ("bicyclohexane", "cases/linkages/bicyclohexane.toml", []),
     ("bicyclohexane --prune hc4,newton/lp", "cases/linkages/bicyclohexane.toml", ["--prune", "hc4,newton/lp"]),
 ]
 RANKS = [1, 2, 4]
@@ -82,9 +83,14 @@ def measure(args):
 
 # ---- the model -----------------------------------------------------------------------------
 
+def complete(tree):
+    return all(p + c in tree for p, (_, split) in tree.items() if split for c in "01")
+
+
 def load_tree(path):
-    """Per sub-problem: racing (several candidates: one unit of the summed time) or a tree
-    {path: (seconds, split)}."""
+    """Per sub-problem: a tree {path: (seconds, split)}, or a race (several candidates): the
+    winner's tree (the complete one), which its leader lends out like a tree, and the losers'
+    summed seconds, which stay on the owner."""
     subs = defaultdict(lambda: defaultdict(dict))
     with open(path) as f:
         for row in csv.DictReader(f):
@@ -93,7 +99,9 @@ def load_tree(path):
     for i in sorted(subs):
         cands = subs[i]
         if len(cands) > 1:
-            units.append(("race", sum(s for c in cands.values() for s, _ in c.values())))
+            winner = next(k for k, t in cands.items() if complete(t))
+            losers = sum(s for k, c in cands.items() if k != winner for s, _ in c.values())
+            units.append(("race", (cands[winner], losers)))
         else:
             units.append(("tree", next(iter(cands.values()))))
     return units
@@ -148,15 +156,13 @@ class Model:
                     next_unit += 1
                     unit_id += 1
                     self.messages += 1
-                    if k == "race":
-                        state[w] = {"id": unit_id, "kind": k, "pending": [], "start": begin}
-                        busy_time += data
-                        push(begin + data, "done", w)
-                    else:
-                        # under "auto" rank 0 learns from a heartbeat that the sub-problem shares
-                        state[w] = {"id": unit_id, "kind": k, "tree": data, "pending": [""], "start": begin,
-                                    "dry_until": 0, "asked": False, "auto": self.auto}
-                        push(begin, "box", w)
+                    # under "auto" rank 0 learns from a heartbeat that the sub-problem shares; a
+                    # race's owner also runs the losers' turns (their seconds, when its own
+                    # boxes are done: a race ends when the winner's last box is in)
+                    tree, serial = data if k == "race" else (data, 0.0)
+                    state[w] = {"id": unit_id, "kind": "tree", "tree": tree, "pending": [""], "start": begin,
+                                "dry_until": 0, "asked": False, "auto": self.auto, "serial": serial}
+                    push(begin, "box", w)
                 else:
                     victims = [v for v in range(n) if state[v] and state[v]["kind"] == "tree" and v not in thieves
                                and t0 >= state[v]["start"] + (BEAT if state[v]["auto"] else 0)
@@ -179,13 +185,15 @@ class Model:
                         unit_id += 1
                         self.messages += 1
                         state[thief] = {"id": unit_id, "kind": "tree", "tree": s["tree"], "pending": [node],
-                                        "start": t1 + hop, "dry_until": 0, "asked": False, "auto": False}
+                                        "start": t1 + hop, "dry_until": 0, "asked": False, "auto": False, "serial": 0.0}
                         push(t1 + hop, "box", thief)
                     else:
                         s["dry_until"] = t1 + DRY
                         push(t1 + hop, "ask", thief)
                 if not s["pending"]:
-                    push(t, "done", w)
+                    busy_time += s["serial"]
+                    push(t + s["serial"], "done", w)
+                    s["serial"] = 0.0
                     continue
                 path = s["pending"].pop()
                 seconds, split = s["tree"][path]
@@ -239,7 +247,7 @@ def model(args):
             base = rows[0]["makespan"]
             for r in rows:
                 r["speedup"] = base / r["makespan"]
-            boxes = sum(len(d) if k == "tree" else 0 for k, d in units)
+            boxes = sum(len(d) if k == "tree" else len(d[0]) for k, d in units)
             results["cases"][name] = {"rows": rows, "units": len(units), "tree_boxes": boxes,
                                       "critical_path": critical_path(units)}
             print(name, json.dumps(results["cases"][name]["rows"][-1]), flush=True)
@@ -248,17 +256,18 @@ def model(args):
 
 
 def critical_path(units):
-    """The longest unit that cannot be split: a race, or a tree's longest root-to-leaf chain."""
+    """The longest chain that cannot be split: a tree's longest root-to-leaf chain, plus for a
+    race the losers' seconds (on its owner)."""
     worst = 0.0
     for kind, data in units:
+        serial = 0.0
         if kind == "race":
-            worst = max(worst, data)
-            continue
+            data, serial = data
         best = {}
         for path in sorted(data, key=len, reverse=True):
             s, split = data[path]
             best[path] = s + max((best.get(path + c, 0) for c in "01"), default=0)
-        worst = max(worst, best.get("", 0))
+        worst = max(worst, serial + best.get("", 0))
     return worst
 
 
