@@ -403,6 +403,13 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
   Sharing* sharing = racers.size() == 1 ? run.sharing : nullptr;
   Sharing* lending = racers.size() > 1 ? run.sharing : nullptr;
   int lender = -1;
+  // Whichever way this returns (an exception too), no record is delivered to the racers after.
+  struct EndLending {
+    Sharing* lending;
+    ~EndLending() {
+      if (lending) lending->end_lending();
+    }
+  } end_lending{lending};
   bool gave = false;
   if (run.checkpoints.enabled() || sharing || lending)
     for (size_t k = 0; k < racers.size(); ++k)
