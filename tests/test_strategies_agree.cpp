@@ -1,6 +1,7 @@
 // Every strategy must certify the same roots on the bundled cases: the certified boxes of
 // one strategy each overlap exactly one of another's (angles modulo 2 pi).
 #include "formulate/load.hpp"
+#include "interval/rigorous.hpp"
 #include "solve/branch_and_prune.hpp"
 #include "solve/solve_case.hpp"
 #include "solve/share.hpp"
@@ -184,8 +185,11 @@ struct ThreadLending final : solve::Sharing {
     ++lent;
     threads.emplace_back([this, i, strategy, n = *node, &search, lease = lease] {
       solve::Piece p = solve::run_subtree(f, i, options, budget, nullptr, strategy, {n}, true);
-      std::lock_guard lock(m);
-      if (lease == this->lease) search.deliver(std::move(p.state.records), p.counters);  // else recalled
+      {
+        std::lock_guard lock(m);
+        if (lease == this->lease) search.deliver(std::move(p.state.records), p.counters);  // else recalled
+      }
+      rigorous::release_thread_caches();  // MPFR's per-thread caches, as every thread of the library does
     });
     return true;
   }
