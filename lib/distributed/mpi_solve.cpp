@@ -353,6 +353,12 @@ class Process {
   void dispatch();
   void stop(const std::string& why);
   void send_unit(int worker, const std::string& kind, size_t sub, json extra, std::string payload);
+  // A lent subtree's records to the race that lent them; dropped once that race is over.
+  void forward_records(const SubState& s, long lease, const std::string& payload) {
+    if (s.owner < 0 || s.result) return;
+    wire_.send(s.owner / slots_per_rank_,
+               {0, {{"t", "records"}, {"slot", s.owner % slots_per_rank_}, {"unit", s.owner_unit}, {"lease", lease}}, payload});
+  }
   int worker_of(const Message& m) const { return m.from * slots_per_rank_ + m.head.at("slot").get<int>(); }
   bool all_done() const {
     for (auto& q : queue_)
@@ -514,9 +520,7 @@ void Process::coordinate(const Message& m) {
     if (m.head.value("record", false)) {
       // A lent subtree: its records go to the race that lent it (the race's own result holds
       // everything, so nothing is merged here); dropped once that race is over.
-      if (s.owner >= 0 && !s.result)
-        wire_.send(s.owner / slots_per_rank_, {0, {{"t", "records"}, {"slot", s.owner % slots_per_rank_}, {"unit", s.owner_unit},
-                                                   {"lease", m.head.value("lease", 0L)}}, m.payload});
+      forward_records(s, m.head.value("lease", 0L), m.payload);
     } else if (m.head.at("whole").get<bool>()) {
       s.result = solve::sub_checkpoint_from_text(m.payload).result;
       // Lent subtrees still searched are no longer wanted: their searches may stop.
@@ -560,10 +564,7 @@ void Process::handle(Message m) {
     else s.steal_for = unit;  // queued behind the unit that runs: asked as soon as it starts
   } else if (t == "records" && !m.head.contains("unit")) {
     // rank 0: a batch of a lent subtree's records, on its way to the lender
-    const SubState& s = subs_.at(m.head.at("sub").get<size_t>());
-    if (s.owner >= 0 && !s.result)
-      wire_.send(s.owner / slots_per_rank_, {0, {{"t", "records"}, {"slot", s.owner % slots_per_rank_}, {"unit", s.owner_unit},
-                                                 {"lease", m.head.at("lease")}}, m.payload});
+    forward_records(subs_.at(m.head.at("sub").get<size_t>()), m.head.at("lease").get<long>(), m.payload);
   } else if (t == "recall") {
     // rank 0: the race's lender lost the lead; the searches of its lent boxes may stop
     for (int rank = 0; rank < world_.size(); ++rank)

@@ -173,6 +173,9 @@ struct Search::State {
   Processed process(prune::Sequence& c, Certifier* certify, Node node, bool& cut, const std::function<bool()>& stop);
   void commit(Processed&& p);
   void run_ahead(int threads, double work_limit);
+  // Runs `worker` on this thread with the search's own contractor and on threads - 1 more
+  // with the kept helpers', then adds their counters to the contractor's.
+  void on_threads(int threads, const std::function<void(prune::Sequence&, Certifier*)>& worker);
 };
 
 Search::Search(const Box& start, prune::Sequence& contractor, std::vector<int> split_dims, const Params& params,
@@ -442,20 +445,7 @@ bool Search::run(int threads, double work_limit) {
     c.stop_when(nullptr);
   };
 
-  std::vector<std::unique_ptr<prune::Sequence>> clones;
-  std::vector<std::unique_ptr<Certifier>> certifiers;
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) {
-    clones.push_back(st.contractor.clone_sequence());
-    certifiers.push_back(st.certifier ? st.certifier->clone() : nullptr);
-    pool.emplace_back([&, c = clones.back().get(), certify = certifiers.back().get()] {
-      worker(*c, certify);
-      rigorous::release_thread_caches();
-    });
-  }
-  worker(st.contractor, st.certifier);
-  for (auto& t : pool) t.join();
-  for (auto& c : clones) st.contractor.add_counters(*c);
+  st.on_threads(threads, worker);
   st.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return done();
 }
@@ -560,6 +550,10 @@ void Search::State::run_ahead(int threads, double work_limit) {
     c.stop_when(nullptr);
   };
 
+  on_threads(threads, worker);
+}
+
+void Search::State::on_threads(int threads, const std::function<void(prune::Sequence&, Certifier*)>& worker) {
   // The helpers' contractors are kept across runs (a race has many short turns, and a clone
   // of an LP strategy is not free); their counters are handed over after each run.
   while (static_cast<int>(helpers.size()) < threads - 1) {
@@ -574,9 +568,9 @@ void Search::State::run_ahead(int threads, double work_limit) {
     });
   worker(contractor, certifier);
   for (auto& t : pool) t.join();
-  for (auto& h : helpers) {
-    contractor.add_counters(*h);
-    h->set_counters(std::vector<prune::Counters>(h->counters().size()));
+  for (int t = 0; t < threads - 1; ++t) {
+    contractor.add_counters(*helpers[t]);
+    helpers[t]->set_counters(std::vector<prune::Counters>(helpers[t]->counters().size()));
   }
 }
 
