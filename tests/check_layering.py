@@ -22,8 +22,10 @@ ALLOWED = {
     "verify": {"interval", "model", "formulate", "newton", "solve/result.hpp", "prune/counters.hpp"},
     # report serialises; it proves nothing (no certification entry points).
     "report": {"interval", "model", "input", "formulate", "solve", "prune", "verify/cluster_report.hpp", "newton/certify.hpp"},
-    # distributed runs solve's searches over MPI processes; it proves nothing of its own.
-    "distributed": {"interval", "model", "input", "formulate", "solve", "prune"},
+    # distributed runs solve's searches and verify's clusters over MPI processes; it proves
+    # nothing of its own (each cluster is verify_cluster's, sent back as exact JSON).
+    "distributed": {"interval", "model", "input", "formulate", "solve", "prune", "verify/certify_case.hpp",
+                    "verify/cluster_json.hpp"},
     "cli": {"interval", "model", "input", "formulate", "solve", "prune", "verify", "report", "newton", "distributed"},
 }
 

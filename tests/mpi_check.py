@@ -65,11 +65,12 @@ def check(ok, what):
 
 
 # What a distributed run must reproduce: the certified roots, the headline, the solution boxes
-# in search-tree order (with their sub-problem and certification), the counts of the search.
+# in search-tree order (with their sub-problem and certification), the counts of the search,
+# and every cluster's verification (certificates, roots, crossings), verified on any rank.
 def comparable(j):
     stats = {k: j["stats"][k] for k in ("processed", "empty", "split", "solution_boxes", "certified_in_search")}
     return {"headline": j["headline"], "certified_roots": j["certified_roots"], "solutions": j["solutions"],
-            "complete": j["complete"], "stats": stats}
+            "complete": j["complete"], "stats": stats, "clusters": j["clusters"]}
 
 
 def same(mpi, linkbox, tmp, case, flags):
@@ -86,6 +87,11 @@ def same(mpi, linkbox, tmp, case, flags):
         check(a[key] == b[key], f"{key} identical to one process")
     d = load(many)["distributed"]
     check(d["ranks"] == 3 and d["boxes"] >= a["stats"]["processed"], f"3 ranks reported their boxes ({d})")
+    # Rank 0 keeps two clusters per thread; the rest are spread as threads free up.
+    v, threads = d["verification"], d["threads_per_rank"]
+    check(v["clusters"] == len(a["clusters"]), f"the clusters were verified over the ranks ({v})")
+    if v["clusters"] > 2 * threads * 3:
+        check(v["clusters_on_other_ranks"] > 0, f"other ranks verified clusters ({v['clusters_on_other_ranks']})")
     return d
 
 
@@ -146,18 +152,20 @@ def interrupt(mpi, linkbox, tmp):
 
 def fault(mpi, linkbox, tmp):
     out = os.path.join(tmp, "fault.json")
-    case = "cases/spherical/four-loop.toml"
-    for how in ("exit", "hang"):
-        env = {"LINKBOX_MPI_TEST_DIE_RANK": "1", "LINKBOX_MPI_TEST_DIE_HOW": how, "LINKBOX_MPI_TEST_DIE_AFTER": "30",
-               "LINKBOX_MPI_TIMEOUT": "3"}
-        try:
-            code, text = solve(mpi, linkbox, case, [], out, ranks=3, env=env)
-        except subprocess.TimeoutExpired:
-            check(False, f"a rank that {how}s ends the run within {TIMEOUT} s")
-            continue
-        check(code != 0, f"a rank that {how}s: exit non-zero ({code})")
-        if how == "hang":
-            check(code == 3 and "sent nothing for 3 s" in text, "the silent rank is named, exit 3: " + text[-600:])
+    # Rank 1 dies in the search (after 30 boxes of the four-loop) or in verification (at its
+    # first cluster of kin1's 16).
+    for phase, case, after in (("search", "cases/spherical/four-loop.toml", "30"), ("verify", "cases/benchmarks/kin1.toml", "0")):
+        for how in ("exit", "hang"):
+            env = {"LINKBOX_MPI_TEST_DIE_RANK": "1", "LINKBOX_MPI_TEST_DIE_HOW": how, "LINKBOX_MPI_TEST_DIE_AFTER": after,
+                   "LINKBOX_MPI_TEST_DIE_IN": phase, "LINKBOX_MPI_TIMEOUT": "3"}
+            try:
+                code, text = solve(mpi, linkbox, case, [], out, ranks=3, env=env)
+            except subprocess.TimeoutExpired:
+                check(False, f"a rank that {how}s in {phase} ends the run within {TIMEOUT} s")
+                continue
+            check(code != 0, f"a rank that {how}s in {phase}: exit non-zero ({code})")
+            if how == "hang":
+                check(code == 3 and "rank 1 sent nothing for 3 s" in text, "the silent rank is named, exit 3: " + text[-600:])
 
 
 def bad_input(mpi, linkbox, tmp):

@@ -79,11 +79,7 @@ int merge_duplicates(const formulate::Formulation& f, VerifyReport& report,
 
 }  // namespace
 
-VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResult& result,
-                         const VerifyOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
-  VerifyReport report;
-  const bool angles = f.outputs_are_angles();
+std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& f, const solve::CaseResult& result) {
   std::vector<Box> outputs;
   std::vector<std::pair<size_t, size_t>> where;
   std::vector<double> residual;
@@ -104,52 +100,82 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
         uncertified_index.push_back(i);
       }
     }
-  const std::vector<bool> periodic(f.output_names().size(), angles);
+  const std::vector<bool> periodic(f.output_names().size(), f.outputs_are_angles());
   for (auto& g : cluster_boxes(uncertified, periodic)) {
     for (int& i : g) i = uncertified_index[i];
     groups.push_back(std::move(g));
   }
   std::sort(groups.begin(), groups.end());  // by smallest member: independent of which were certified
+  std::vector<ClusterTask> tasks(groups.size());
+  for (size_t k = 0; k < groups.size(); ++k)
+    for (int i : groups[k]) {
+      tasks[k].boxes.push_back(where[i]);
+      tasks[k].outputs.push_back(outputs[i]);
+      tasks[k].residuals.push_back(residual[i]);
+    }
+  return tasks;
+}
+
+ClusterReport verify_cluster(const formulate::Formulation& f, const ClusterTask& task, const VerifyOptions& options) {
+  const bool angles = f.outputs_are_angles();
+  const std::vector<bool> periodic(f.output_names().size(), angles);
+  ClusterReport c;
+  std::vector<Box> member;
+  for (size_t i = 0; i < task.outputs.size(); ++i) {
+    c.boxes.push_back(task.boxes.at(i));
+    member.push_back(unwrap(task.outputs[i], task.outputs[0], angles));
+    c.max_residual = std::max(c.max_residual, task.residuals.at(i));
+  }
+  c.hull = member.at(0);
+  for (auto& b : member) c.hull = hull(c.hull, b);
+  if (options.skip_rest && options.skip_rest()) {
+    c.reason = "verification skipped (interrupted)";
+    return c;
+  }
+  c.chart = f.chart_for(c.hull);
+  Box start;
+  try {
+    start = f.output_to_natural(c.chart, c.hull);
+  } catch (const std::exception& e) {
+    c.reason = std::string("cluster too wide for a chart: ") + e.what();
+  }
+  if (!start.empty()) certify_isolated(f, f.natural(c.chart), start, member, periodic, c, options.newton);
+  classify_curve(f, member, !start.empty(), c, options.newton);
+  if (!start.empty()) classify_inequalities(f.natural(c.chart), start, c);
+  return c;
+}
+
+VerifyReport conclude(const formulate::Formulation& f, std::vector<ClusterReport> clusters,
+                      const solve::CaseResult& result, const VerifyOptions& options) {
+  VerifyReport report;
+  report.clusters = std::move(clusters);
+  const std::vector<bool> periodic(f.output_names().size(), f.outputs_are_angles());
+  const int overlaps_unresolved = merge_duplicates(f, report, periodic, options.newton);
+  report.inequalities = static_cast<int>(f.natural(0).inequalities.size());
+  summarise(report, overlaps_unresolved, result);
+  return report;
+}
+
+VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResult& result,
+                         const VerifyOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<ClusterTask> tasks = cluster_tasks(f, result);
   // Clusters are independent: with threads, each takes the next one, and the reports keep
   // the clusters' order.
-  report.clusters.resize(groups.size());
-  auto verify_cluster = [&](const std::vector<int>& g, ClusterReport& c) {
-    std::vector<Box> member;
-    for (int i : g) {
-      c.boxes.push_back(where[i]);
-      member.push_back(unwrap(outputs[i], outputs[g[0]], angles));
-      c.max_residual = std::max(c.max_residual, residual[i]);
-    }
-    c.hull = member[0];
-    for (auto& b : member) c.hull = hull(c.hull, b);
-    if (options.skip_rest && options.skip_rest()) {
-      c.reason = "verification skipped (interrupted)";
-      return;
-    }
-    c.chart = f.chart_for(c.hull);
-    Box start;
-    try {
-      start = f.output_to_natural(c.chart, c.hull);
-    } catch (const std::exception& e) {
-      c.reason = std::string("cluster too wide for a chart: ") + e.what();
-    }
-    if (!start.empty()) certify_isolated(f, f.natural(c.chart), start, member, periodic, c, options.newton);
-    classify_curve(f, member, !start.empty(), c, options.newton);
-    if (!start.empty()) classify_inequalities(f.natural(c.chart), start, c);
-  };
+  std::vector<ClusterReport> clusters(tasks.size());
   std::atomic<size_t> next{0};
-  std::vector<std::exception_ptr> errors(groups.size());
+  std::vector<std::exception_ptr> errors(tasks.size());
   auto work = [&] {
-    for (size_t k; (k = next.fetch_add(1)) < groups.size();) {
+    for (size_t k; (k = next.fetch_add(1)) < tasks.size();) {
       try {
-        verify_cluster(groups[k], report.clusters[k]);
+        clusters[k] = verify_cluster(f, tasks[k], options);
       } catch (...) {
         errors[k] = std::current_exception();
       }
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 1; t < std::min<int>(options.threads, static_cast<int>(groups.size())); ++t)
+  for (int t = 1; t < std::min<int>(options.threads, static_cast<int>(tasks.size())); ++t)
     pool.emplace_back([&] {
       work();
       rigorous::release_thread_caches();
@@ -158,9 +184,7 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
   for (auto& t : pool) t.join();
   for (auto& e : errors)
     if (e) std::rethrow_exception(e);  // the first cluster's error, as one thread would have thrown
-  const int overlaps_unresolved = merge_duplicates(f, report, periodic, options.newton);
-  report.inequalities = static_cast<int>(f.natural(0).inequalities.size());
-  summarise(report, overlaps_unresolved, result);
+  VerifyReport report = conclude(f, std::move(clusters), result, options);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;
 }

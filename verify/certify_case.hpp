@@ -24,4 +24,19 @@ struct VerifyOptions {
 VerifyReport verify_case(const formulate::Formulation& formulation, const solve::CaseResult& result,
                          const VerifyOptions& options = {});
 
+// verify_case in its three steps, for a caller that spreads the clusters over processes
+// (distributed/): the clusters, each verified on its own (a pure function of the task), then
+// the run's conclusions (duplicate roots merged, the headline). Only the last needs all.
+struct ClusterTask {
+  std::vector<std::pair<size_t, size_t>> boxes;  // (sub-problem, solution index)
+  std::vector<Box> outputs;                      // each member in the output variables
+  std::vector<double> residuals;                 // each member's rigorous residual bound
+};
+std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& formulation, const solve::CaseResult& result);
+ClusterReport verify_cluster(const formulate::Formulation& formulation, const ClusterTask& task,
+                             const VerifyOptions& options);
+// `clusters` in the order of cluster_tasks; report.seconds is left to the caller.
+VerifyReport conclude(const formulate::Formulation& formulation, std::vector<ClusterReport> clusters,
+                      const solve::CaseResult& result, const VerifyOptions& options);
+
 }  // namespace linkbox::verify

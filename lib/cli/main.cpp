@@ -13,6 +13,7 @@
 
 #ifdef LINKBOX_MPI
 #include "distributed/mpi_solve.hpp"
+#include "distributed/mpi_verify.hpp"
 #endif
 
 #include <CLI/CLI.hpp>
@@ -26,6 +27,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -178,24 +180,34 @@ void resume_settings(SolveCommand& cmd, const nlohmann::json& saved) {
     throw std::invalid_argument("the checkpoint's settings " + saved.dump() + " are not understood by this linkbox");
 }
 
-// A search's result to the summary and the JSON, then verification. `extra` goes into the JSON.
+verify::VerifyOptions verify_options(const SolveCommand& cmd) {
+  verify::VerifyOptions vo;
+  vo.skip_rest = [] { return interrupts.load() >= 2; };
+  vo.threads = cmd.options.threads;
+  return vo;
+}
+
+// Runs verification: `verifying` false (a second interrupt) skips it, and returns nothing.
+using Verifier = std::function<std::optional<verify::VerifyReport>(bool verifying, const verify::VerifyOptions&)>;
+
+// A search's result to the summary and the JSON, then verification (unless --no-verify).
+// `extra` goes into the JSON, asked each time it is written.
 int report_and_verify(const SolveCommand& cmd, const formulate::LoadedCase& c, const solve::CaseResult& r,
-                      const nlohmann::json& extra) {
+                      const std::function<nlohmann::json()>& extra, const Verifier& verifier) {
   const solve::RunOptions& o = cmd.options;
   report::print_summary(stdout, c, o, r);
   nlohmann::json j = report::result_json(c.name, c.file, *c.formulation, o, r);
-  j.update(extra);
+  j.update(extra());
   // mpirun answers an interrupt with SIGTERM to every rank and SIGKILL a second later: the
   // search's result is on disk before verification starts, and replaced once it is verified.
   if (distributed_run() && interrupts.load() && !cmd.json_out.empty())
     solve::write_atomically(cmd.json_out, j.dump(1) + '\n');
-  if (!cmd.no_verify && interrupts.load() < 2) {
-    verify::VerifyOptions vo;
-    vo.skip_rest = [] { return interrupts.load() >= 2; };
-    vo.threads = o.threads;
-    const verify::VerifyReport v = verify::verify_case(*c.formulation, r, vo);
-    report::print_verification(stdout, c, v);
-    report::add_verification(j, *c.formulation, v);
+  if (!cmd.no_verify) {
+    if (const auto v = verifier(interrupts.load() < 2, verify_options(cmd))) {
+      report::print_verification(stdout, c, *v);
+      report::add_verification(j, *c.formulation, *v);
+      j.update(extra());
+    }
   }
   if (!cmd.json_out.empty()) solve::write_atomically(cmd.json_out, j.dump(1) + '\n');
   std::fflush(stdout);
@@ -246,8 +258,15 @@ int run_solve(SolveCommand& cmd) {
   if (distributed_run()) {
     distributed::Figures figures;
     const auto r = distributed::solve_distributed(*c.formulation, o, *world, &figures);
-    if (!r) return interrupts.load() ? 128 + last_signal : 0;  // a worker: rank 0 reports
-    return report_and_verify(cmd, c, *r, {{"distributed", figures.json()}});
+    if (!r) {  // a worker: rank 0 reports
+      if (!cmd.no_verify) distributed::verify_distributed(*c.formulation, nullptr, verify_options(cmd), *world, nullptr);
+      return interrupts.load() ? 128 + last_signal : 0;
+    }
+    return report_and_verify(
+        cmd, c, *r, [&] { return nlohmann::json{{"distributed", figures.json()}}; },
+        [&](bool verifying, const verify::VerifyOptions& vo) {
+          return distributed::verify_distributed(*c.formulation, verifying ? &*r : nullptr, vo, *world, &figures);
+        });
   }
 #endif
   solve::BoxLog log;
@@ -263,7 +282,11 @@ int run_solve(SolveCommand& cmd) {
     }
     solve::write_atomically(cmd.record_tree, csv);
   }
-  return report_and_verify(cmd, c, r, nlohmann::json::object());
+  return report_and_verify(
+      cmd, c, r, [] { return nlohmann::json::object(); },
+      [&](bool verifying, const verify::VerifyOptions& vo) {
+        return verifying ? std::optional(verify::verify_case(*c.formulation, r, vo)) : std::nullopt;
+      });
 }
 
 int run_check(const CheckCommand& cmd) {
@@ -442,6 +465,10 @@ An unsupported construct is an error naming file:line (exit 2), never a change o
     return e.code;
 #endif
   } catch (const std::exception& e) {
+#ifdef LINKBOX_MPI
+    // An error of this rank alone: the others would wait for it until their timeout.
+    if (distributed_run()) world->fail(std::string("internal error: ") + e.what(), 1);
+#endif
     if (speaks()) std::fprintf(stderr, "linkbox: internal error: %s\n", e.what());
     return 1;
   }

@@ -7,7 +7,6 @@
 
 #include <atomic>
 #include <condition_variable>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <algorithm>
@@ -17,7 +16,6 @@
 #include <limits>
 #include <map>
 #include <thread>
-#include <unistd.h>
 
 namespace linkbox::distributed {
 
@@ -38,21 +36,18 @@ json Figures::json() const {
           {"boxes_given", boxes_given},
           {"boxes", boxes},
           {"handled", handled},
-          {"handling_seconds", handling_seconds}};
+          {"handling_seconds", handling_seconds},
+          {"verification", {{"clusters", clusters},
+                            {"clusters_on_other_ranks", clusters_elsewhere},
+                            {"messages", verify_traffic.messages},
+                            {"bytes", verify_traffic.bytes},
+                            {"heartbeat_messages", verify_traffic.beats}}}};
 }
 
 namespace {
 
-// Rank 0 hears from every rank (and every rank from rank 0) this often, so silence means death.
-constexpr double kBeat = 0.2;
 // Seconds before a search that had nothing to give is asked again.
 constexpr double kDryWait = 0.02;
-
-double fault_timeout() {
-  const char* t = std::getenv("LINKBOX_MPI_TIMEOUT");
-  const double s = t ? std::atof(t) : 0;
-  return s > 0 ? s : 60;
-}
 
 // Pieces and results travel as the checkpoint writes sub-problem states: exact doubles,
 // infinities, paths and backoffs, one format to keep right.
@@ -85,27 +80,6 @@ Piece piece_from(const Message& m) {
 json piece_head(const char* type, const Piece& p) {
   return {{"t", type}, {"sub", p.subproblem}, {"strategy", p.strategy}, {"race", p.race}};
 }
-
-// Test hook: LINKBOX_MPI_TEST_DIE_RANK=r makes rank r die (LINKBOX_MPI_TEST_DIE_HOW=exit, the
-// default) or stop answering (=hang) after LINKBOX_MPI_TEST_DIE_AFTER boxes (default 20).
-struct Death {
-  long after = -1;
-  bool hang = false;
-  std::atomic<long> boxes{0};
-  explicit Death(int rank) {
-    const char* r = std::getenv("LINKBOX_MPI_TEST_DIE_RANK");
-    if (!r || std::atoi(r) != rank) return;
-    const char* a = std::getenv("LINKBOX_MPI_TEST_DIE_AFTER");
-    after = a ? std::atol(a) : 20;
-    const char* how = std::getenv("LINKBOX_MPI_TEST_DIE_HOW");
-    hang = how && std::string(how) == "hang";
-  }
-  void box() {
-    if (after < 0 || boxes.fetch_add(1) < after) return;
-    if (hang) raise(SIGSTOP);  // every thread of the process stops: no heartbeat either
-    _exit(kFaultExit);
-  }
-};
 
 // One search slot: a thread that runs the units rank 0 hands it.
 struct Slot {
@@ -145,7 +119,7 @@ struct SubState {
 class Process {
  public:
   Process(const formulate::Formulation& f, const solve::RunOptions& options, const World& world)
-      : f_(f), options_(options), world_(world), wire_(world), budget_(options.params), death_(world.rank()) {
+      : f_(f), options_(options), world_(world), wire_(world), budget_(options.params), death_(world.rank(), "search") {
     unit_options_ = options;
     unit_options_.threads = 1;
     unit_options_.progress = false;
@@ -164,7 +138,7 @@ class Process {
     bool asked() override {
       Slot& s = *p.slots_[k];
       s.shares.store(true, std::memory_order_relaxed);
-      p.death_.box();
+      p.death_.step();
       return s.steal.load(std::memory_order_relaxed);
     }
     // The oldest pending box: in depth-first order the shallowest, so the largest subtree.
@@ -250,11 +224,7 @@ class Process {
     }
   };
 
-  void post(int to, Message m) {
-    std::lock_guard lock(outbox_m_);
-    outbox_.emplace_back(to, std::move(m));
-    outbox_cv_.notify_one();
-  }
+  void post(int to, Message m) { outbox_.post(to, std::move(m)); }
 
   Message wait(Slot& s) {
     std::unique_lock lock(s.m);
@@ -373,12 +343,10 @@ class Process {
   const World& world_;
   Wire wire_;
   solve::Budget budget_;
-  Death death_;
+  TestDeath death_;
   int slots_per_rank_ = 1;
   std::vector<std::unique_ptr<Slot>> slots_;
-  std::mutex outbox_m_;
-  std::condition_variable outbox_cv_;  // the main thread sleeps on it between polls
-  std::deque<std::pair<int, Message>> outbox_;
+  Outbox outbox_;
   bool leaving_ = false;     // this rank's part is over
   bool told_stop_ = false;   // rank 0 knows that this rank's budget ran out
   std::optional<std::pair<int, std::string>> failure_;  // an error that ends the run
@@ -625,16 +593,7 @@ std::optional<solve::CaseResult> Process::run(Figures* figures) {
   auto last_beat = std::chrono::steady_clock::now() - std::chrono::seconds(1);
   auto last_line = std::chrono::steady_clock::now();
   while (true) {
-    bool active = false;
-    {
-      std::deque<std::pair<int, Message>> out;
-      {
-        std::lock_guard lock(outbox_m_);
-        out.swap(outbox_);
-      }
-      for (auto& [to, m] : out) wire_.send(to, std::move(m));
-      active = !out.empty();
-    }
+    bool active = outbox_.drain(wire_);
     while (auto m = wire_.receive()) {
       const auto t0 = std::chrono::steady_clock::now();
       handle(std::move(*m));
@@ -676,11 +635,7 @@ std::optional<solve::CaseResult> Process::run(Figures* figures) {
       last_line = now;
       progress_line();
     }
-    // MPI cannot wake a sleeping thread, so it polls; a slot's message wakes it at once.
-    if (!active) {
-      std::unique_lock lock(outbox_m_);
-      outbox_cv_.wait_for(lock, std::chrono::microseconds(500), [&] { return !outbox_.empty(); });
-    }
+    if (!active) outbox_.pause();
   }
   wire_.flush(timeout);
   if (failure_) {

@@ -34,6 +34,9 @@ struct Figures {  // what the distribution cost, for the report (rank 0)
   long boxes = 0;         // processed over the ranks
   long handled = 0;       // messages rank 0's main thread handled (its own slots' too)
   double handling_seconds = 0;  // and the time it took: the coordinator's cost per message
+  long clusters = 0;            // verification (mpi_verify.hpp): clusters formed
+  long clusters_elsewhere = 0;  // and verified on a rank other than 0
+  Traffic verify_traffic;       // its messages, summed over the ranks
   nlohmann::json json() const;
 };
 

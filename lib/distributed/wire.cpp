@@ -2,9 +2,11 @@
 
 #include <mpi.h>
 
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <thread>
+#include <unistd.h>
 
 namespace linkbox::distributed {
 
@@ -21,6 +23,12 @@ void check(int code, const char* what, const World& world) {
 }
 
 }  // namespace
+
+double fault_timeout() {
+  const char* t = std::getenv("LINKBOX_MPI_TIMEOUT");
+  const double s = t ? std::atof(t) : 0;
+  return s > 0 ? s : 60;
+}
 
 bool World::launched() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
@@ -44,11 +52,11 @@ World::World(int* argc, char*** argv) {
 
 World::~World() { MPI_Finalize(); }
 
-void World::fail(const std::string& why) const {
+void World::fail(const std::string& why, int code) const {
   std::fprintf(stderr, "linkbox: rank %d: %s: the distributed run stops\n", rank_, why.c_str());
   std::fflush(stderr);
-  MPI_Abort(MPI_COMM_WORLD, kFaultExit);
-  std::_Exit(kFaultExit);  // MPI_Abort does not return; this is for a library where it does
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::_Exit(code);  // MPI_Abort does not return; this is for a library where it does
 }
 
 struct Wire::Sending {
@@ -69,7 +77,7 @@ void Wire::send(int to, Message m) {
   auto s = std::make_unique<Sending>(Sending{m.head.dump() + '\n' + m.payload, MPI_REQUEST_NULL});
   ++traffic_.messages;
   traffic_.bytes += static_cast<long>(s->bytes.size());
-  if (m.head.value("t", "") == "beat") {
+  if (const std::string t = m.head.value("t", ""); t == "beat" || t == "v-beat") {
     ++traffic_.beats;
     traffic_.beat_bytes += static_cast<long>(s->bytes.size());
   }
@@ -131,6 +139,44 @@ void Wire::flush(double seconds) {
 
 double Wire::silent(int rank) const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - heard_[rank]).count();
+}
+
+void Outbox::post(int to, Message m) {
+  std::lock_guard lock(m_);
+  queue_.emplace_back(to, std::move(m));
+  cv_.notify_one();
+}
+
+bool Outbox::drain(Wire& wire) {
+  std::deque<std::pair<int, Message>> out;
+  {
+    std::lock_guard lock(m_);
+    out.swap(queue_);
+  }
+  for (auto& [to, m] : out) wire.send(to, std::move(m));
+  return !out.empty();
+}
+
+void Outbox::pause() {
+  std::unique_lock lock(m_);
+  cv_.wait_for(lock, std::chrono::microseconds(500), [&] { return !queue_.empty(); });
+}
+
+TestDeath::TestDeath(int rank, const std::string& phase) {
+  const char* r = std::getenv("LINKBOX_MPI_TEST_DIE_RANK");
+  if (!r || std::atoi(r) != rank) return;
+  const char* in = std::getenv("LINKBOX_MPI_TEST_DIE_IN");
+  if (phase != (in ? in : "search")) return;
+  const char* a = std::getenv("LINKBOX_MPI_TEST_DIE_AFTER");
+  after_ = a ? std::atol(a) : 20;
+  const char* how = std::getenv("LINKBOX_MPI_TEST_DIE_HOW");
+  hang_ = how && std::string(how) == "hang";
+}
+
+void TestDeath::step() {
+  if (after_ < 0 || steps_.fetch_add(1) < after_) return;
+  if (hang_) raise(SIGSTOP);  // every thread of the process stops: no heartbeat either
+  _exit(kFaultExit);
 }
 
 }  // namespace linkbox::distributed

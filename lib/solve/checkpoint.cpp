@@ -1,5 +1,7 @@
 #include "solve/checkpoint.hpp"
 
+#include "interval/box_json.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cerrno>
@@ -18,35 +20,10 @@ namespace {
 
 constexpr int kFormat = 1;
 
-// Doubles round-trip exactly through nlohmann's shortest representation; JSON has no
-// infinities, so those travel as strings.
-json num(double x) {
-  if (std::isfinite(x)) return x;
-  return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
-}
-double num(const json& j) {
-  if (j.is_number()) return j.get<double>();
-  const std::string s = j.get<std::string>();
-  if (s == "inf") return INFINITY;
-  if (s == "-inf") return -INFINITY;
-  if (s == "nan") return NAN;
-  throw std::invalid_argument("not a number: " + s);
-}
-
-json box_out(const Box& b) {
-  json j = json::array();
-  for (auto& x : b) j.push_back({num(x.lower()), num(x.upper())});
-  return j;
-}
-Box box_in(const json& j) {
-  Box b;
-  for (auto& x : j) {
-    const double lo = num(x.at(0)), hi = num(x.at(1));
-    if (!(lo <= hi)) throw std::invalid_argument("an empty interval");
-    b.emplace_back(lo, hi);
-  }
-  return b;
-}
+json num(double x) { return exact_json(x); }
+double num(const json& j) { return exact_double(j); }
+json box_out(const Box& b) { return exact_json(b); }
+Box box_in(const json& j) { return exact_box(j); }
 
 json stats_out(const Stats& s) {
   return {s.processed, s.empty, s.solution, s.split, s.shrinks, s.certified, s.certify_calls, num(s.seconds)};

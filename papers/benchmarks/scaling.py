@@ -4,6 +4,7 @@ box, and a model of 64-1024 ranks that replays the search tree a run records.
 
   scaling.py measure --linkbox build/linkbox [--runs 3] [--out DIR]   runs -> DIR/scaling-runs.json
   scaling.py model   --linkbox build/linkbox [--out DIR]              records trees, replays them
+  scaling.py verify  --linkbox build/linkbox [--runs 3] [--out DIR]   verification over ranks -> DIR/scaling-verify.json
   scaling.py report  [--out DIR]                                      the tables of scaling.md
 
 The model replays each recorded box with its measured time and the protocol of
@@ -79,6 +80,62 @@ def measure(args):
                     print(json.dumps(row), flush=True)
     with open(path, "w") as f:
         json.dump(runs, f, indent=1)
+
+
+# Verification over the ranks: the one case whose verification is long (its curve's clusters).
+VERIFY_CASES = [("bicyclohexane", "cases/linkages/bicyclohexane.toml", [])]
+
+
+def verify(args):
+    path = os.path.join(args.out, "scaling-verify.json")
+    runs = []
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "r.json")
+        for rep in range(args.runs):
+            for name, case, flags in VERIFY_CASES:
+                for ranks in RANKS:
+                    cmd = ([] if ranks == 1 else mpirun(ranks)) + [args.linkbox, "solve", os.path.join(ROOT, case),
+                                                                   "--quiet", "--json", out] + flags
+                    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                    j = json.load(open(out))
+                    d = (j.get("distributed") or {}).get("verification", {})
+                    row = {"case": name, "ranks": ranks, "rep": rep, "verification": j["verification"]["seconds"],
+                           "clusters": len(j["clusters"]), "headline": j["headline"],
+                           "elsewhere": d.get("clusters_on_other_ranks", 0),
+                           "messages": d.get("messages", 0) - d.get("heartbeat_messages", 0), "bytes": d.get("bytes", 0),
+                           "load": os.getloadavg()[0]}
+                    runs.append(row)
+                    print(json.dumps(row), flush=True)
+    with open(path, "w") as f:
+        json.dump(runs, f, indent=1)
+
+
+def by_case_and_ranks(path):
+    by = defaultdict(list)
+    for r in json.load(open(path)):
+        by[(r["case"], r["ranks"])].append(r)
+    return by
+
+
+def verify_report(args):
+    path = os.path.join(args.out, "scaling-verify.json")
+    if not os.path.exists(path):
+        return
+    print("\n| case | ranks | clusters | verification s (median) | speed-up | clusters on other ranks | messages | bytes / cluster | same headline | runs |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    by = by_case_and_ranks(path)
+    for name, _, _ in VERIFY_CASES:
+        base = statistics.median(x["verification"] for x in by[(name, 1)])
+        for ranks in RANKS:
+            rs = by.get((name, ranks))
+            if not rs:
+                continue
+            v = statistics.median(x["verification"] for x in rs)
+            same = all(x["headline"] == by[(name, 1)][0]["headline"] for x in rs)
+            print(f"| {name} | {ranks}{' (2 cores: oversubscribed)' if ranks > 2 else ''} | {rs[0]['clusters']} | {v:.2f} | "
+                  f"{base / v:.2f} | {statistics.median(x['elsewhere'] for x in rs):g} | "
+                  f"{statistics.median(x['messages'] for x in rs):g} | "
+                  f"{statistics.median(x['bytes'] / x['clusters'] for x in rs):.0f} | {'yes' if same else 'NO'} | {len(rs)} |")
 
 
 # ---- the model -----------------------------------------------------------------------------
@@ -272,12 +329,9 @@ def critical_path(units):
 
 
 def report(args):
-    runs = json.load(open(os.path.join(args.out, "scaling-runs.json")))
     print("| case | ranks | wall s (median) | search s | CPU s | speed-up (wall) | speed-up (search) | CPU ratio | messages / box | bytes / box | boxes given | runs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
-    by = defaultdict(list)
-    for r in runs:
-        by[(r["case"], r["ranks"])].append(r)
+    by = by_case_and_ranks(os.path.join(args.out, "scaling-runs.json"))
     for name, _, _ in CASES:
         if (name, 1) not in by:
             continue
@@ -298,6 +352,7 @@ def report(args):
                 extra = "- | - | -"
             print(f"| {name} | {ranks}{' (2 cores: oversubscribed)' if ranks > 2 else ''} | {w:.2f} | {s:.2f} | {c:.2f} | "
                   f"{bw / w:.2f} | {bs / s:.2f} | {c / bc:.2f} | {extra} | {len(rs)} |")
+    verify_report(args)
     path = os.path.join(args.out, "scaling-model.json")
     if not os.path.exists(path):
         return
@@ -313,7 +368,7 @@ def report(args):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("what", choices=["measure", "model", "report"])
+    ap.add_argument("what", choices=["measure", "model", "verify", "report"])
     ap.add_argument("--linkbox", default=os.path.join(ROOT, "build", "linkbox"))
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--out", default=os.path.dirname(os.path.abspath(__file__)))
@@ -322,7 +377,7 @@ def main():
     ap.add_argument("--append", action="store_true", help="add to the runs already measured")
     ap.add_argument("--hop", type=float, default=3e-4, help="seconds per message hop (polling + MPI latency)")
     args = ap.parse_args()
-    {"measure": measure, "model": model, "report": report}[args.what](args)
+    {"measure": measure, "model": model, "verify": verify, "report": report}[args.what](args)
 
 
 if __name__ == "__main__":
