@@ -11,7 +11,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <exception>
+#include <mutex>
 #include <thread>
 
 namespace linkbox::verify {
@@ -163,8 +165,10 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
   // Clusters are independent: with threads, each takes the next one, and the reports keep
   // the clusters' order.
   std::vector<ClusterReport> clusters(tasks.size());
-  std::atomic<size_t> next{0};
+  std::atomic<size_t> next{0}, done{0};
   std::vector<std::exception_ptr> errors(tasks.size());
+  std::mutex line_m;
+  auto last_line = t0;
   auto work = [&] {
     for (size_t k; (k = next.fetch_add(1)) < tasks.size();) {
       try {
@@ -172,6 +176,14 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
       } catch (...) {
         errors[k] = std::current_exception();
       }
+      ++done;
+      if (!options.progress) continue;
+      std::lock_guard lock(line_m);
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_line < std::chrono::seconds(1)) continue;
+      last_line = now;
+      std::fprintf(stderr, "linkbox: verifying: %zu/%zu clusters, %.1f s\n", done.load(), tasks.size(),
+                   std::chrono::duration<double>(now - t0).count());
     }
   };
   std::vector<std::thread> pool;

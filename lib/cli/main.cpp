@@ -184,6 +184,7 @@ verify::VerifyOptions verify_options(const SolveCommand& cmd) {
   verify::VerifyOptions vo;
   vo.skip_rest = [] { return interrupts.load() >= 2; };
   vo.threads = cmd.options.threads;
+  vo.progress = !cmd.quiet;
   return vo;
 }
 
@@ -196,6 +197,7 @@ int report_and_verify(const SolveCommand& cmd, const formulate::LoadedCase& c, c
                       const std::function<nlohmann::json()>& extra, const Verifier& verifier) {
   const solve::RunOptions& o = cmd.options;
   report::print_summary(stdout, c, o, r);
+  std::fflush(stdout);  // before verification's progress lines on stderr
   nlohmann::json j = report::result_json(c.name, c.file, *c.formulation, o, r);
   j.update(extra());
   // mpirun answers an interrupt with SIGTERM to every rank and SIGKILL a second later: the

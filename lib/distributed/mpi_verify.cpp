@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdio>
 #include <deque>
 #include <mutex>
 #include <thread>
@@ -179,6 +180,7 @@ std::optional<verify::VerifyReport> Phase::run(const solve::CaseResult* result, 
     });
   const double timeout = fault_timeout();
   auto last_beat = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  auto last_line = t0;
   bool said_bye = false;
   while (true) {
     bool active = outbox_.drain(wire_);
@@ -207,6 +209,11 @@ std::optional<verify::VerifyReport> Phase::run(const solve::CaseResult* result, 
           world_.fail("rank " + std::to_string(r) + " sent nothing for " + std::to_string(static_cast<int>(timeout)) +
                       " s while verifying (dead or hung; LINKBOX_MPI_TIMEOUT sets the limit)");
       }
+    }
+    if (root && options_.progress && now - last_line >= std::chrono::seconds(1)) {
+      last_line = now;
+      std::fprintf(stderr, "linkbox: verifying: %zu/%zu clusters, %d ranks x %d threads, %.1f s\n", received_,
+                   tasks_.size(), world_.size(), threads_, std::chrono::duration<double>(now - t0).count());
     }
     if (!active) outbox_.pause();
   }
