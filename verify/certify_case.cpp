@@ -79,29 +79,65 @@ int merge_duplicates(const formulate::Formulation& f, VerifyReport& report,
   return unresolved;
 }
 
+// Calls work(k) for k < n on `threads` threads (this one included), each taking the next k;
+// the first exception (by k) is rethrown once all are done, as one thread would have thrown it.
+template <class Work>
+void for_each_index(size_t n, int threads, const Work& work) {
+  std::atomic<size_t> next{0};
+  std::vector<std::exception_ptr> errors(n);
+  auto run = [&] {
+    for (size_t k; (k = next.fetch_add(1)) < n;) {
+      try {
+        work(k);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min<int>(threads, static_cast<int>(n)); ++t)
+    pool.emplace_back([&] {
+      run();
+      rigorous::release_thread_caches();
+    });
+  run();
+  for (auto& t : pool) t.join();
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
 }  // namespace
 
-std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& f, const solve::CaseResult& result) {
-  std::vector<Box> outputs;
+std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& f, const solve::CaseResult& result,
+                                       int threads) {
   std::vector<std::pair<size_t, size_t>> where;
+  std::vector<const solve::SubResult*> sub;
   std::vector<double> residual;
+  for (auto& s : result.subproblems)
+    for (size_t k = 0; k < s.solutions.size(); ++k) {
+      where.emplace_back(s.index, k);
+      sub.push_back(&s);
+      residual.push_back(s.residuals.at(k));
+    }
+  // Angles come out of a rigorous atan2 (MPFI): a third of bicyclohexane's verification, so
+  // on every thread.
+  std::vector<Box> outputs(where.size());
+  for_each_index(where.size(), threads,
+                 [&](size_t i) { outputs[i] = f.to_output(where[i].first, sub[i]->solutions[where[i].second]); });
   std::vector<Box> uncertified;
   std::vector<int> uncertified_index;
   std::vector<std::vector<int>> groups;
-  for (auto& s : result.subproblems)
-    for (size_t k = 0; k < s.solutions.size(); ++k) {
-      const int i = static_cast<int>(outputs.size());
-      outputs.push_back(f.to_output(s.index, s.solutions[k]));
-      where.emplace_back(s.index, k);
-      residual.push_back(s.residuals.at(k));
-      // A box certified during the search holds exactly one root: a cluster of its own.
-      if (k < s.certified.size() && s.certified[k]) {
-        groups.push_back({i});
-      } else {
-        uncertified.push_back(outputs.back());
-        uncertified_index.push_back(i);
-      }
+  for (size_t n = 0; n < where.size(); ++n) {
+    const int i = static_cast<int>(n);
+    const size_t k = where[n].second;
+    // A box certified during the search holds exactly one root: a cluster of its own.
+    if (k < sub[n]->certified.size() && sub[n]->certified[k]) {
+      groups.push_back({i});
+    } else {
+      uncertified.push_back(outputs[n]);
+      uncertified_index.push_back(i);
     }
+  }
   const std::vector<bool> periodic(f.output_names().size(), f.outputs_are_angles());
   for (auto& g : cluster_boxes(uncertified, periodic)) {
     for (int& i : g) i = uncertified_index[i];
@@ -161,41 +197,24 @@ VerifyReport conclude(const formulate::Formulation& f, std::vector<ClusterReport
 VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResult& result,
                          const VerifyOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<ClusterTask> tasks = cluster_tasks(f, result);
+  const std::vector<ClusterTask> tasks = cluster_tasks(f, result, options.threads);
   // Clusters are independent: with threads, each takes the next one, and the reports keep
   // the clusters' order.
   std::vector<ClusterReport> clusters(tasks.size());
-  std::atomic<size_t> next{0}, done{0};
-  std::vector<std::exception_ptr> errors(tasks.size());
+  std::atomic<size_t> done{0};
   std::mutex line_m;
   auto last_line = t0;
-  auto work = [&] {
-    for (size_t k; (k = next.fetch_add(1)) < tasks.size();) {
-      try {
-        clusters[k] = verify_cluster(f, tasks[k], options);
-      } catch (...) {
-        errors[k] = std::current_exception();
-      }
-      ++done;
-      if (!options.progress) continue;
-      std::lock_guard lock(line_m);
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last_line < std::chrono::seconds(1)) continue;
-      last_line = now;
-      std::fprintf(stderr, "linkbox: verifying: %zu/%zu clusters, %.1f s\n", done.load(), tasks.size(),
-                   std::chrono::duration<double>(now - t0).count());
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::min<int>(options.threads, static_cast<int>(tasks.size())); ++t)
-    pool.emplace_back([&] {
-      work();
-      rigorous::release_thread_caches();
-    });
-  work();
-  for (auto& t : pool) t.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);  // the first cluster's error, as one thread would have thrown
+  for_each_index(tasks.size(), options.threads, [&](size_t k) {
+    clusters[k] = verify_cluster(f, tasks[k], options);
+    ++done;
+    if (!options.progress) return;
+    std::lock_guard lock(line_m);
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_line < std::chrono::seconds(1)) return;
+    last_line = now;
+    std::fprintf(stderr, "linkbox: verifying: %zu/%zu clusters, %.1f s\n", done.load(), tasks.size(),
+                 std::chrono::duration<double>(now - t0).count());
+  });
   VerifyReport report = conclude(f, std::move(clusters), result, options);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;

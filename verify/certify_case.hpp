@@ -35,7 +35,8 @@ struct ClusterTask {
   std::vector<Box> outputs;                      // each member in the output variables
   std::vector<double> residuals;                 // each member's rigorous residual bound
 };
-std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& formulation, const solve::CaseResult& result);
+std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& formulation, const solve::CaseResult& result,
+                                       int threads = 1);
 ClusterReport verify_cluster(const formulate::Formulation& formulation, const ClusterTask& task,
                              const VerifyOptions& options);
 // `clusters` in the order of cluster_tasks; report.seconds is left to the caller.

@@ -162,7 +162,7 @@ std::optional<verify::VerifyReport> Phase::run(const solve::CaseResult* result, 
   const auto t0 = std::chrono::steady_clock::now();
   const bool root = world_.rank() == 0;
   if (root) {
-    if (result) tasks_ = verify::cluster_tasks(f_, *result);
+    if (result) tasks_ = verify::cluster_tasks(f_, *result, threads_);
     reports_.resize(tasks_.size());
     held_.assign(world_.size(), 0);
     gone_.assign(world_.size(), 0);
