@@ -121,14 +121,14 @@ class IntegerLu {
   }
   void clear(int k) {
     for (int i = 0; i < k_; ++i)
-      for (int j : row_list_[i]) nz(i, j) = 0;
+      for (int j : row_list_[i]) nz(i, j) = kAbsent;
     k_ = k;
     for (int i = 0; i < k; ++i) row_list_[i].clear(), col_list_[i].clear();
   }
   void set(int i, int j, const mpz_class& v) {
     if (sgn(v) == 0) return;
     a(i, j) = v;
-    nz(i, j) = 1;
+    nz(i, j) = kNonzero;
     step(i, j) = 0;
     row_list_[i].push_back(j);
     col_list_[j].push_back(i);
@@ -143,6 +143,9 @@ class IntegerLu {
 
  private:
   mpz_class& a(int i, int j) { return a_[static_cast<size_t>(i) * capacity_ + j]; }
+  // Per entry: absent (in no list), non-zero, or cancelled to zero by an elimination (still
+  // listed in its row and column).
+  static constexpr char kAbsent = 0, kNonzero = 1, kCancelled = 2;
   char& nz(int i, int j) { return nonzero_[static_cast<size_t>(i) * capacity_ + j]; }
   int& step(int i, int j) { return step_[static_cast<size_t>(i) * capacity_ + j]; }
   // Entry (i, j) at step t.
@@ -211,14 +214,14 @@ bool IntegerLu::factor() {
       if (row_done[i] || row_count[i] != min_row) continue;
       ++searched;
       for (int j : row_list_[i])
-        if (!col_done[j] && nz(i, j)) consider(i, j);
+        if (!col_done[j] && nz(i, j) == kNonzero) consider(i, j);
     }
     searched = 0;
     for (int j = 0; j < k && best != 0 && searched < 4; ++j) {
       if (col_done[j] || col_count[j] != min_col) continue;
       ++searched;
       for (int i : col_list_[j])
-        if (!row_done[i] && nz(i, j)) consider(i, j);
+        if (!row_done[i] && nz(i, j) == kNonzero) consider(i, j);
     }
     prow_[s - 1] = r, pcol_[s - 1] = c;
     row_done[r] = 1;
@@ -228,31 +231,33 @@ bool IntegerLu::factor() {
     std::vector<int>& later = later_[s - 1];
     later.clear();
     for (int j : row_list_[r])
-      if (j != c && !col_done[j] && nz(r, j)) later.push_back(j), at(r, j, s - 1), --col_count[j];
+      if (j != c && !col_done[j] && nz(r, j) == kNonzero) later.push_back(j), at(r, j, s - 1), --col_count[j];
     std::vector<int>& rows = eliminated_[s - 1];
     rows.clear();
     for (int i : col_list_[c]) {
-      if (row_done[i] || !nz(i, c)) continue;
+      if (row_done[i] || nz(i, c) != kNonzero) continue;
       rows.push_back(i);
       const mpz_class& l = at(i, c, s - 1);  // kept: the L entry of step s
       --row_count[i];
       for (int j : later) {
         mpz_class& e = a(i, j);
         const mpz_class& arj = a(r, j);
-        if (nz(i, j)) {
+        if (nz(i, j) == kNonzero) {
           at(i, j, s - 1);
           e *= ps;  // e = (p_s e - l a_rj) / p_(s-1)
           mpz_submul(e.get_mpz_t(), l.get_mpz_t(), arj.get_mpz_t());
         } else {
           mpz_mul(e.get_mpz_t(), l.get_mpz_t(), arj.get_mpz_t());
           e = -e;
-          nz(i, j) = 1;
-          row_list_[i].push_back(j), col_list_[j].push_back(i);
+          // An entry that cancelled to zero at an earlier step is listed already: listing it
+          // twice would eliminate it twice: a wrong solution (the LU tests in test_lp_exact.cpp).
+          if (nz(i, j) == kAbsent) row_list_[i].push_back(j), col_list_[j].push_back(i);
+          nz(i, j) = kNonzero;
           ++row_count[i], ++col_count[j];
         }
         mpz_divexact(e.get_mpz_t(), e.get_mpz_t(), prev.get_mpz_t());
         step(i, j) = s;
-        if (sgn(e) == 0) nz(i, j) = 0, --row_count[i], --col_count[j];
+        if (sgn(e) == 0) nz(i, j) = kCancelled, --row_count[i], --col_count[j];
       }
     }
     col_done[c] = 1;
