@@ -790,6 +790,7 @@ ExactSimplex::Result ExactSimplex::solve(int col, double sense, std::vector<Basi
       // outward to doubles), run primal simplex pivots, put the bounds back.
       // Once only: moving them again let the values wander (to 1e83 on the rigid 6R) and
       // ended in infeasibility claims CGAL refuted; such a basis goes to CGAL (failure 3).
+      // (Seen while the LU still eliminated cancelled entries twice, 804dee1; not re-tried.)
       if (!moved_lo.empty() || !moved_hi.empty()) return result.failure = 3, result;
       ++result.relaxations;
       mpz_class& den = u;
