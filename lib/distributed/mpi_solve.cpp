@@ -507,10 +507,7 @@ void Process::coordinate(const Message& m) {
     for (int r = 0; r < world_.size(); ++r) wire_.send(r, {0, {{"t", "fail"}, {"code", failure_->first}}, ""});
   } else if (t == "bye") {
     gone_[m.from] = 1;
-    figures_.traffic.messages += m.head.at("messages").get<long>();
-    figures_.traffic.bytes += m.head.at("bytes").get<long>();
-    figures_.traffic.beats += m.head.at("beats").get<long>();
-    figures_.traffic.beat_bytes += m.head.at("beat_bytes").get<long>();
+    figures_.traffic += Traffic::from(m.head);
     figures_.boxes += m.head.at("boxes").get<long>();
   }
   dispatch();
@@ -556,10 +553,12 @@ void Process::handle(Message m) {
       if (!failure_) failure_ = {m.head.at("code").get<int>(), ""};
     }
     end_slots();
-    const Traffic& x = wire_.traffic();
     // Counted before this message, which the totals then miss: one per rank.
-    wire_.send(0, {0, {{"t", "bye"}, {"messages", x.messages + (world_.rank() != 0)}, {"bytes", x.bytes}, {"beats", x.beats},
-                       {"beat_bytes", x.beat_bytes}, {"boxes", budget_.boxes_taken()}}, ""});
+    Traffic x = wire_.traffic();
+    x.messages += world_.rank() != 0;
+    json head = {{"t", "bye"}, {"boxes", budget_.boxes_taken()}};
+    x.put(head);
+    wire_.send(0, {0, head, ""});
     leaving_ = world_.rank() != 0;
   } else if (world_.rank() == 0) {
     coordinate(m);

@@ -151,10 +151,7 @@ void Phase::handle(Message m) {
     end(true);
   } else if (t == "v-bye") {
     gone_[m.from] = 1;
-    figures_.verify_traffic.messages += m.head.at("messages").get<long>();
-    figures_.verify_traffic.bytes += m.head.at("bytes").get<long>();
-    figures_.verify_traffic.beats += m.head.at("beats").get<long>();
-    figures_.verify_traffic.beat_bytes += m.head.at("beat_bytes").get<long>();
+    figures_.verify_traffic += Traffic::from(m.head);
   }
 }
 
@@ -191,9 +188,11 @@ std::optional<verify::VerifyReport> Phase::run(const solve::CaseResult* result, 
     if (quitting_ && alive_ == 0) {
       if (!root && !said_bye) {
         // Counted before this message, which the totals then miss: one per rank.
-        const Traffic& x = wire_.traffic();
-        wire_.send(0, {0, {{"t", "v-bye"}, {"messages", x.messages + 1}, {"bytes", x.bytes}, {"beats", x.beats},
-                           {"beat_bytes", x.beat_bytes}}, ""});
+        Traffic x = wire_.traffic();
+        ++x.messages;
+        json head = {{"t", "v-bye"}};
+        x.put(head);
+        wire_.send(0, {0, head, ""});
         said_bye = true;
         break;
       }
@@ -228,11 +227,7 @@ std::optional<verify::VerifyReport> Phase::run(const solve::CaseResult* result, 
   for (auto& r : reports_) clusters.push_back(std::move(*r));
   verify::VerifyReport report = verify::conclude(f_, std::move(clusters), *result, options_);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const Traffic& x = wire_.traffic();
-  figures_.verify_traffic.messages += x.messages;
-  figures_.verify_traffic.bytes += x.bytes;
-  figures_.verify_traffic.beats += x.beats;
-  figures_.verify_traffic.beat_bytes += x.beat_bytes;
+  figures_.verify_traffic += wire_.traffic();
   if (figures) {
     figures->clusters = figures_.clusters;
     figures->clusters_elsewhere = figures_.clusters_elsewhere;

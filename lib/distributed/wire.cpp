@@ -24,6 +24,20 @@ void check(int code, const char* what, const World& world) {
 
 }  // namespace
 
+Traffic& Traffic::operator+=(const Traffic& o) {
+  messages += o.messages, bytes += o.bytes, beats += o.beats, beat_bytes += o.beat_bytes;
+  return *this;
+}
+
+void Traffic::put(nlohmann::json& head) const {
+  head["messages"] = messages, head["bytes"] = bytes, head["beats"] = beats, head["beat_bytes"] = beat_bytes;
+}
+
+Traffic Traffic::from(const nlohmann::json& head) {
+  return {head.at("messages").get<long>(), head.at("bytes").get<long>(), head.at("beats").get<long>(),
+          head.at("beat_bytes").get<long>()};
+}
+
 double fault_timeout() {
   const char* t = std::getenv("LINKBOX_MPI_TIMEOUT");
   const double s = t ? std::atof(t) : 0;

@@ -56,6 +56,10 @@ struct Traffic {
   long bytes = 0;
   long beats = 0;  // of the messages: heartbeats (time-driven, not per box)
   long beat_bytes = 0;
+  Traffic& operator+=(const Traffic& other);
+  // A rank's goodbye carries its traffic to rank 0: these fields of a message head.
+  void put(nlohmann::json& head) const;
+  static Traffic from(const nlohmann::json& head);
 };
 
 class Wire {
