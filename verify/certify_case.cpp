@@ -127,14 +127,13 @@ std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& f, const so
   std::vector<Box> uncertified;
   std::vector<int> uncertified_index;
   std::vector<std::vector<int>> groups;
-  for (size_t n = 0; n < where.size(); ++n) {
-    const int i = static_cast<int>(n);
-    const size_t k = where[n].second;
+  for (int i = 0; i < static_cast<int>(where.size()); ++i) {
+    const size_t k = where[i].second;
     // A box certified during the search holds exactly one root: a cluster of its own.
-    if (k < sub[n]->certified.size() && sub[n]->certified[k]) {
+    if (k < sub[i]->certified.size() && sub[i]->certified[k]) {
       groups.push_back({i});
     } else {
-      uncertified.push_back(outputs[n]);
+      uncertified.push_back(outputs[i]);
       uncertified_index.push_back(i);
     }
   }
