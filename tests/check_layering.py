@@ -21,7 +21,9 @@ ALLOWED = {
     # verify never depends on a contractor: from solve and prune only the plain result data.
     "verify": {"interval", "model", "formulate", "newton", "solve/result.hpp", "prune/counters.hpp"},
     # report serialises; it proves nothing (no certification entry points).
-    "report": {"interval", "model", "input", "formulate", "solve", "prune", "verify/cluster_report.hpp", "newton/certify.hpp"},
+    # A curve map is written as verify writes it for MPI (exact JSON), one format for both.
+    "report": {"interval", "model", "input", "formulate", "solve", "prune", "verify/cluster_report.hpp",
+               "verify/curve_map_json.hpp", "newton/certify.hpp"},
     # distributed runs solve's searches and verify's clusters over MPI processes; it proves
     # nothing of its own (each cluster is verify_cluster's, sent back as exact JSON).
     "distributed": {"interval", "model", "input", "formulate", "solve", "prune", "verify/certify_case.hpp",

@@ -2,6 +2,7 @@
 
 #include "verify/cluster.hpp"
 #include "verify/curve.hpp"
+#include "verify/curve_map.hpp"
 #include "verify/headline.hpp"
 #include "verify/isolated.hpp"
 
@@ -106,6 +107,19 @@ void for_each_index(size_t n, int threads, const Work& work) {
     if (e) std::rethrow_exception(e);
 }
 
+// Attaches the certified map of a cluster that looks like a curve; the map, when there is
+// one, says what the cluster is, whichever way the crossings went.
+void map_curve(const formulate::Formulation& f, const std::vector<Box>& member, bool chart_holds_cluster,
+               ClusterReport& c, const newton::NewtonOptions& options) {
+  std::vector<std::uint64_t> charts(member.size(), c.chart);
+  if (!chart_holds_cluster)
+    for (size_t k = 0; k < member.size(); ++k) charts[k] = f.chart_for(member[k]);
+  c.map = map_cluster(f, member, charts, options);
+  if (!c.map) return;
+  c.status = ClusterStatus::curve;
+  c.reason = c.map->statement;
+}
+
 }  // namespace
 
 std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& f, const solve::CaseResult& result,
@@ -177,7 +191,8 @@ ClusterReport verify_cluster(const formulate::Formulation& f, const ClusterTask&
     c.reason = std::string("cluster too wide for a chart: ") + e.what();
   }
   if (!start.empty()) certify_isolated(f, f.natural(c.chart), start, member, periodic, c, options.newton);
-  classify_curve(f, member, !start.empty(), c, options.newton);
+  const bool curve_like = classify_curve(f, member, !start.empty(), c, options.newton);
+  if (curve_like) map_curve(f, member, !start.empty(), c, options.newton);
   if (!start.empty()) classify_inequalities(f.natural(c.chart), start, c);
   return c;
 }

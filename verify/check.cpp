@@ -2,6 +2,7 @@
 
 #include "newton/certify.hpp"
 #include "newton/interval_newton.hpp"
+#include "verify/check_map.hpp"
 #include "verify/cluster.hpp"
 
 #include <Eigen/LU>
@@ -172,7 +173,8 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
   // cluster (or a cluster left out) could hold a root the count never sees.
   std::map<std::pair<size_t, size_t>, size_t> owner;
   std::vector<size_t> duplicates;  // certified clusters marked duplicate_of another
-  int certified = 0;
+  std::vector<size_t> proved_maps;  // curve clusters whose map re-proves as proved
+  int certified = 0, closed_curves = 0, open_arcs = 0;
   const std::vector<bool> periodic(outputs, angles);
   const auto& clusters = j.at("clusters");
   for (size_t i = 0; i < clusters.size(); ++i) {
@@ -276,6 +278,21 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
           break;
         }
     } else if (status == "curve") {
+      if (c.contains("map")) {
+        std::vector<Box> boxes;
+        for (auto& m : c.at("members")) {
+          auto it = solutions.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
+          // Unwrapped towards the first member, as verification unwrapped them.
+          if (it != solutions.end()) boxes.push_back(boxes.empty() ? it->second : unwrapped(it->second, boxes[0], angles));
+        }
+        const MapCheck mc = boxes.size() == c.at("members").size() ? check_map(c.at("map"), f, boxes) : MapCheck{{"members missing"}};
+        out.checked += mc.arcs;
+        for (auto& why : mc.failures) out.failures.push_back(where + ": its map: " + why);
+        if (mc.proved) {
+          proved_maps.push_back(i);
+          closed_curves += mc.closed, open_arcs += mc.open;
+        }
+      }
       for (auto& x : c.at("crossings")) {
         if (x.at("status") != "certified") continue;
         ++out.checked;
@@ -362,12 +379,18 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
     if (!j.value("complete", false)) out.failures.push_back("the headline states an exact count of an incomplete search");
     for (size_t i = 0; i < clusters.size(); ++i) {
       const std::string status = clusters[i].at("status");
-      const bool settled = status == "empty" || status == "infeasible" ||
+      const bool map_proved = std::find(proved_maps.begin(), proved_maps.end(), i) != proved_maps.end();
+      const bool settled = status == "empty" || status == "infeasible" || map_proved ||
                            (status == "certified" && clusters[i].at("certificate").value("unique_in_hull", false));
       if (!settled)
         out.failures.push_back("cluster " + std::to_string(i) + ": the headline states an exact count, but this cluster is " +
                                (status == "certified" ? "not proved to hold only its root" : status));
     }
+  }
+  if (j.contains("verification") && j.at("verification").contains("map")) {
+    const json& m = j.at("verification").at("map");
+    if (m.value("closed_curves", -1) != closed_curves || m.value("open_arcs", -1) != open_arcs)
+      out.failures.push_back("the map's counts of closed curves and open arcs are not those its proved clusters give");
   }
   if (certified != j.at("certified_roots").get<int>())
     out.failures.push_back("certified_roots says " + std::to_string(j.at("certified_roots").get<int>()) + " but " +

@@ -1,6 +1,7 @@
 #include "verify/cluster_json.hpp"
 
 #include "interval/box_json.hpp"
+#include "verify/curve_map_json.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -109,7 +110,8 @@ json report_json(const ClusterReport& c) {
           {"straddled", c.straddled},
           {"max_residual", exact_json(c.max_residual)},
           {"distances", doubles_json(c.distances)},
-          {"max_distance", exact_json(c.max_distance)}};
+          {"max_distance", exact_json(c.max_distance)},
+          {"map", c.map ? map_json(*c.map) : json()}};
 }
 
 ClusterReport report_from(const json& j) {
@@ -139,6 +141,7 @@ ClusterReport report_from(const json& j) {
   c.max_residual = exact_double(j.at("max_residual"));
   c.distances = doubles_from(j.at("distances"));
   c.max_distance = exact_double(j.at("max_distance"));
+  if (!j.at("map").is_null()) c.map = map_from(j.at("map"));
   return c;
 }
 

@@ -2,6 +2,7 @@
 // What verification says about each cluster of solution boxes, and about the run.
 #include "newton/certify.hpp"
 #include "formulate/formulation.hpp"
+#include "verify/curve_map.hpp"
 
 #include <string>
 #include <vector>
@@ -41,6 +42,9 @@ struct ClusterReport {
   std::vector<formulate::MatrixOutput> outputs;  // declared outputs over the certified box
   std::vector<CurveCrossing> crossings;         // curve clusters
   int crossings_certified = 0;
+  // Curve clusters: the certified map of the solution set in the cluster's boxes, when the
+  // arcs cover enough of them to state one.
+  std::optional<CurveMap> map;
   int duplicate_of = -1;  // certified, but the same root as that cluster's
   // Inequalities of the natural system: the one a root violates (infeasible) or sits on the
   // boundary of (unverified), -1 if none; and those whose sign the enclosure of the cluster
@@ -61,6 +65,10 @@ struct VerifyReport {
   int certified_roots = 0;
   int unverified = 0;
   int curves = 0;
+  // Components of the curve clusters' maps, and whether every curve cluster's map is proved.
+  int closed_curves = 0;
+  int open_arcs = 0;
+  bool maps_proved = false;
   int empty = 0;
   int infeasible = 0;
   int inequalities = 0;  // of the natural system: the count is of roots where they all hold

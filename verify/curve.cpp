@@ -158,9 +158,9 @@ bool certify_curve(const formulate::Formulation& f, const std::vector<Box>& memb
 
 }  // namespace
 
-void classify_curve(const formulate::Formulation& f, const std::vector<Box>& member,
+bool classify_curve(const formulate::Formulation& f, const std::vector<Box>& member,
                     bool chart_holds_cluster, ClusterReport& c, const newton::NewtonOptions& options) {
-  if (c.status != ClusterStatus::unverified) return;
+  if (c.status != ClusterStatus::unverified) return false;
   const auto& sys = f.natural(c.chart);
   const size_t n = sys.unknowns.size();
   // Curve: many boxes spanning far more than any one of them, with a rank-deficient
@@ -185,7 +185,7 @@ void classify_curve(const formulate::Formulation& f, const std::vector<Box>& mem
     } catch (const std::exception&) {
     }
   }
-  if (!long_cluster || !rank_deficient) return;
+  if (!long_cluster || !rank_deficient) return false;
   // Called a curve only when a solution curve of the subsystem, on which the dropped
   // equation vanishes, crosses at least half of its boxes; a singular isolated root (a
   // double root, an ill-conditioned one) does not, and stays unverified.
@@ -198,6 +198,7 @@ void classify_curve(const formulate::Formulation& f, const std::vector<Box>& mem
                    ? "positive-dimensional: boxes follow a curve"
                    : "positive-dimensional: boxes follow a curve around a whole turn (each box in its own chart)";
   }
+  return true;
 }
 
 }  // namespace linkbox::verify

@@ -1,6 +1,7 @@
 #include "verify/headline.hpp"
 
 #include <map>
+#include <vector>
 
 namespace linkbox::verify {
 
@@ -12,10 +13,24 @@ std::string without_detail(const std::string& reason) {
   return !reason.empty() && reason.back() == ')' && open != std::string::npos ? reason.substr(0, open) : reason;
 }
 
+std::string count(int k, const char* one, const char* many) { return std::to_string(k) + " " + (k == 1 ? one : many); }
+
+// "2 isolated roots, 1 closed curve and 2 open arcs"; isolated < 0 leaves them out.
+std::string map_words(int isolated, int closed, int open) {
+  std::vector<std::string> parts;
+  if (isolated >= 0) parts.push_back(count(isolated, "isolated root", "isolated roots"));
+  if (closed) parts.push_back(count(closed, "closed curve", "closed curves"));
+  if (open) parts.push_back(count(open, "open arc", "open arcs") + " (ending on the domain's boundary)");
+  std::string s;
+  for (size_t k = 0; k < parts.size(); ++k) s += (k == 0 ? "" : k + 1 == parts.size() ? " and " : ", ") + parts[k];
+  return s;
+}
+
 }  // namespace
 
 void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseResult& result) {
   bool all_unique = true;
+  bool maps_proved = true;
   std::map<std::string, int> reasons;
   for (auto& c : report.clusters) {
     if (c.status == ClusterStatus::certified) {
@@ -26,6 +41,9 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
       if (c.duplicate_of < 0) report.certified_roots++;
     } else if (c.status == ClusterStatus::curve) {
       report.curves++;
+      maps_proved = maps_proved && c.map && c.map->proved;
+      if (c.map && c.map->proved)
+        for (auto& comp : c.map->components) ++(comp.closed ? report.closed_curves : report.open_arcs);
     } else if (c.status == ClusterStatus::empty) {
       report.empty++;
     } else if (c.status == ClusterStatus::infeasible) {
@@ -35,8 +53,9 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
       reasons[without_detail(c.reason)]++;
     }
   }
-  report.exact = result.complete && result.rigorous && report.unverified == 0 && report.curves == 0 && all_unique &&
-                 overlaps_unresolved == 0;
+  report.maps_proved = report.curves > 0 && maps_proved;
+  report.exact = result.complete && result.rigorous && report.unverified == 0 && (report.curves == 0 || maps_proved) &&
+                 all_unique && overlaps_unresolved == 0;
   const int n = report.certified_roots;
   const std::string where =
       report.inequalities == 0 ? "in the domain"
@@ -44,6 +63,11 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
                                      (report.inequalities == 1 ? "inequality holds" : "inequalities hold");
   const std::string excluded =
       report.infeasible ? ", " + std::to_string(report.infeasible) + " proved to violate an inequality" : "";
+  if (report.exact && report.curves) {
+    report.headline = "exactly " + map_words(n, report.closed_curves, report.open_arcs) + " " + where +
+                      ", each certified (isolated roots by interval Newton, curves by arc certificates)" + excluded;
+    return;
+  }
   if (report.exact) {
     report.headline = "exactly " + std::to_string(n) + " root" + (n == 1 ? "" : "s") + " " + where +
                       ", each in its certified box" + (report.infeasible ? " (" + excluded.substr(2) + ")" : "");
@@ -51,6 +75,8 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
   }
   report.headline = std::to_string(n) + " certified";
   if (report.curves) report.headline += ", " + std::to_string(report.curves) + " curve cluster(s)";
+  if (report.closed_curves + report.open_arcs)
+    report.headline += " (" + map_words(-1, report.closed_curves, report.open_arcs) + " proved)";
   if (report.unverified) report.headline += ", " + std::to_string(report.unverified) + " unresolved";
   if (report.empty) report.headline += ", " + std::to_string(report.empty) + " proved empty";
   report.headline += excluded;

@@ -1,6 +1,7 @@
 #include "report/json.hpp"
 
 #include "solve/strategy.hpp"
+#include "verify/curve_map_json.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -161,6 +162,10 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
   j["headline"] = r.headline;
   j["verification"] = {{"certified_roots", r.certified_roots}, {"unverified", r.unverified}, {"curves", r.curves}, {"empty", r.empty},
                        {"exact", r.exact}, {"seconds", r.seconds}};
+  if (r.curves) {
+    // The curve clusters' maps, summed: components, and whether every one is proved.
+    j["verification"]["map"] = {{"closed_curves", r.closed_curves}, {"open_arcs", r.open_arcs}, {"proved", r.maps_proved}};
+  }
   if (r.inequalities) {
     j["verification"]["inequalities"] = r.inequalities;
     j["verification"]["infeasible"] = r.infeasible;
@@ -206,6 +211,7 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
       cj["crossings"] = xs;
       cj["crossings_certified"] = c.crossings_certified;
       cj["crossings_fraction"] = c.crossings.empty() ? 0.0 : double(c.crossings_certified) / c.crossings.size();
+      if (c.map) cj["map"] = verify::map_json(*c.map);
     }
     clusters.push_back(cj);
   }

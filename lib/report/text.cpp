@@ -80,6 +80,28 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
     }
 }
 
+namespace {
+
+// A curve cluster's map: what it is, then each component's extent per output variable.
+void print_map(std::FILE* out, const std::vector<std::string>& names, const verify::ClusterReport& cl) {
+  std::fprintf(out, "  curve cluster of %zu boxes: %s\n", cl.boxes.size(), cl.map->statement.c_str());
+  for (auto& comp : cl.map->components) {
+    const char* what = !cl.map->proved ? "arcs joined" : comp.closed ? "closed curve" : "open arc";
+    std::fprintf(out, "    %s (%zu arcs):", what, comp.arcs.size());
+    for (size_t i = 0; i < comp.extent.size() && i < names.size(); ++i)
+      std::fprintf(out, " %s in [%+.4f, %+.4f]", names[i].c_str(), comp.extent[i].lower(), comp.extent[i].upper());
+    std::fprintf(out, "\n");
+  }
+  for (auto& r : cl.map->singular_regions) {
+    std::fprintf(out, "    possible singular point:");
+    for (size_t i = 0; i < r.size() && i < names.size(); ++i)
+      std::fprintf(out, " %s in [%+.4f, %+.4f]", names[i].c_str(), r[i].lower(), r[i].upper());
+    std::fprintf(out, "\n");
+  }
+}
+
+}  // namespace
+
 void print_verification(std::FILE* out, const formulate::LoadedCase& c, const verify::VerifyReport& v) {
   const auto names = c.formulation->output_names();
   std::fprintf(out, "\nverification (%.3f s): %s\n", v.seconds, v.headline.c_str());
@@ -91,7 +113,9 @@ void print_verification(std::FILE* out, const formulate::LoadedCase& c, const ve
     std::fprintf(out, "  (certified box width %.1e)\n", max_width(cl.root));
   }
   for (auto& cl : v.clusters) {
-    if (cl.status == verify::ClusterStatus::curve)
+    if (cl.status == verify::ClusterStatus::curve && cl.map)
+      print_map(out, names, cl);
+    else if (cl.status == verify::ClusterStatus::curve)
       std::fprintf(out, "  curve: %zu boxes, %d/%zu crossings certified\n", cl.boxes.size(), cl.crossings_certified,
                    cl.crossings.size());
     else if (cl.status == verify::ClusterStatus::unverified)

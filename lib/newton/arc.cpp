@@ -1,0 +1,214 @@
+#include "newton/arc.hpp"
+
+#include "newton/interval_newton.hpp"
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <optional>
+
+namespace linkbox::newton {
+
+namespace {
+
+std::vector<int> all_but(int n, int p) {
+  std::vector<int> v;
+  for (int i = 0; i < n; ++i)
+    if (i != p) v.push_back(i);
+  return v;
+}
+
+bool finite(const Box& b) {
+  return std::all_of(b.begin(), b.end(), [](const Interval& x) { return is_finite(x); });
+}
+
+// Float values and dense Jacobian of the n-1 equations at x: guesses only.
+struct FloatCurve {
+  const model::CompiledSystem& f;
+  Eigen::VectorXd values(const Eigen::VectorXd& x) const {
+    Eigen::VectorXd v(f.rows());
+    f.values_float(x.data(), v.data());
+    return v;
+  }
+  Eigen::MatrixXd jacobian(const Eigen::VectorXd& x) const {
+    std::vector<double> e(f.nonzeros());
+    f.jacobian_float(x.data(), e.data());
+    Eigen::MatrixXd j = Eigen::MatrixXd::Zero(f.rows(), f.cols());
+    for (int k = 0; k < f.nonzeros(); ++k) j(f.entry_row(k), f.entry_col(k)) += e[k];
+    return j;
+  }
+};
+
+// A point of the curve near x (minimum-norm Gauss-Newton steps) and the curve's tangent there.
+std::optional<std::pair<Eigen::VectorXd, Eigen::VectorXd>> curve_point(const FloatCurve& c, Eigen::VectorXd x) {
+  for (int k = 0; k < 30; ++k) {
+    const Eigen::VectorXd fx = c.values(x);
+    if (!fx.allFinite()) return std::nullopt;
+    const Eigen::MatrixXd j = c.jacobian(x);
+    const Eigen::VectorXd dx = j.completeOrthogonalDecomposition().solve(fx);
+    if (!dx.allFinite()) return std::nullopt;
+    x -= dx;
+    if (dx.lpNorm<Eigen::Infinity>() <= 1e-14 * (1 + x.lpNorm<Eigen::Infinity>())) break;
+  }
+  const Eigen::MatrixXd j = c.jacobian(x);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeFullV);
+  Eigen::VectorXd v = svd.matrixV().col(j.cols() - 1);
+  if (!x.allFinite() || !v.allFinite()) return std::nullopt;
+  return std::make_pair(x, v);
+}
+
+// Parameters in order of how fast the curve crosses the piece along them: |v_p| / width_p.
+std::vector<int> parameter_order(const Eigen::VectorXd& v, const Box& piece) {
+  std::vector<int> order(piece.size());
+  std::iota(order.begin(), order.end(), 0);
+  auto speed = [&](int p) {
+    const double w = piece[p].upper() - piece[p].lower();
+    return w > 0 ? std::fabs(v(p)) / w : 0.0;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return speed(a) > speed(b); });
+  return order;
+}
+
+// Y widened by `fraction` of each side plus a hair, inside the domain's sides.
+Box widen_within(const Box& y, double fraction, const Box& domain_y) {
+  Box w = y;
+  for (size_t i = 0; i < w.size(); ++i) {
+    const double r = fraction * (y[i].upper() - y[i].lower()) + 1e-12 * (1 + std::fabs(median(y[i])));
+    w[i] = y[i] + Interval(-r, r);
+    if (!domain_y.empty() && !intersect(w[i], domain_y[i], w[i])) w[i] = y[i];
+  }
+  return w;
+}
+
+constexpr int kEndSteps = 8;  // Krawczyk rounds that tighten an end's enclosure
+
+Box end_on(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box, int p, double t,
+           const Eigen::MatrixXd& c) {
+  Box base = box;
+  base[p] = Interval(t);
+  const SquareSystem s(f, all_but(static_cast<int>(box.size()), p), base);
+  Box y = s.restrict(box);
+  Eigen::MatrixXd ck = c;
+  for (int k = 0; k < kEndSteps; ++k) {
+    // After two rounds with the arc's C, the inverse midpoint Jacobian of the end's own
+    // enclosure: it contracts quadratically (any C keeps the enclosure sound).
+    if (k == 2) {
+      const Eigen::MatrixXd jm = midpoint(s.jacobian(y));
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm);
+      if (jm.allFinite() && lu.rcond() > 1e-14) ck = lu.inverse();
+      if (!ck.allFinite()) ck = c;
+    }
+    const NewtonStep step = krawczyk_step(s, y, ck);
+    Box next = y;
+    bool ok = finite(step.image);
+    for (size_t i = 0; ok && i < y.size(); ++i) ok = intersect(y[i], step.image[i], next[i]);
+    if (!ok) break;  // cannot happen on a certified box: the root is in both
+    y = std::move(next);
+  }
+  return s.embed(y);
+}
+
+}  // namespace
+
+Arc arc_from(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box, int parameter,
+             const Eigen::MatrixXd& preconditioner) {
+  Arc a;
+  a.parameter = parameter;
+  a.box = box;
+  a.preconditioner = preconditioner;
+  const int n = static_cast<int>(box.size());
+  if (n < 2 || f->rows() != n - 1 || f->cols() != n || parameter < 0 || parameter >= n || !finite(box) ||
+      preconditioner.rows() != n - 1 || preconditioner.cols() != n - 1 || !preconditioner.allFinite())
+    return a;
+  const SquareSystem s(f, all_but(n, parameter), box);
+  const NewtonStep step = krawczyk_step(s, s.restrict(box), preconditioner);
+  if (!step.interior) return a;
+  a.certified = true;
+  a.image = s.embed(step.image);
+  a.ends[0] = end_on(f, box, parameter, box[parameter].lower(), preconditioner);
+  a.ends[1] = end_on(f, box, parameter, box[parameter].upper(), preconditioner);
+  return a;
+}
+
+bool arc_excluded(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box) {
+  const int n = static_cast<int>(box.size());
+  if (n < 2 || f->rows() != n - 1 || f->cols() != n || !finite(box)) return false;
+  for (int p = 0; p < n; ++p) {
+    const SquareSystem s(f, all_but(n, p), box);
+    const Box y = s.restrict(box);
+    const Eigen::MatrixXd jm = midpoint(s.jacobian(y));
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm);
+    if (!jm.allFinite() || !(lu.rcond() > 1e-14)) continue;
+    const Eigen::MatrixXd c = lu.inverse();
+    if (c.allFinite() && krawczyk_step(s, y, c).excluded) return true;
+  }
+  return false;
+}
+
+Arc certify_arc(const std::shared_ptr<const model::CompiledSystem>& f, const Box& piece, const Box& domain,
+                const NewtonOptions& options) {
+  Arc none;
+  none.box = piece;
+  const int n = static_cast<int>(piece.size());
+  if (n < 2 || f->rows() != n - 1 || f->cols() != n || !finite(piece)) return none;
+  const FloatCurve fc{*f};
+  Eigen::VectorXd mid(n);
+  for (int i = 0; i < n; ++i) mid(i) = median(piece[i]);
+  const auto point = curve_point(fc, mid);
+  if (!point) return none;
+  const auto& [x, tangent] = *point;
+  const std::vector<int> order = parameter_order(tangent, piece);
+  for (int p : order) {
+    Box base = piece;
+    base[p] = Interval(median(piece[p]));
+    const SquareSystem at_mid(f, all_but(n, p), base);
+    Eigen::VectorXd y(n - 1);
+    for (int i = 0, r = 0; i < n; ++i)
+      if (i != p) y(r++) = x(i);
+    // Newton at t = mid from the curve point, then C = the inverse Jacobian there.
+    for (int it = 0; it < options.newton_steps; ++it) {
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(at_mid.jacobian_at(y));
+      const Eigen::VectorXd dy = lu.solve(at_mid.values_at(y));
+      if (!dy.allFinite()) break;
+      y -= dy;
+      if (dy.lpNorm<Eigen::Infinity>() <= 1e-15 * (1 + y.lpNorm<Eigen::Infinity>())) break;
+    }
+    const Eigen::MatrixXd jy = at_mid.jacobian_at(y);
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jy);
+    if (!jy.allFinite() || !(lu.rcond() >= options.singular_rcond)) continue;
+    const Eigen::MatrixXd c = lu.inverse();
+    if (!c.allFinite()) continue;
+    // The parameter's side overlaps the neighbouring pieces a little, so that an end never
+    // lies on another piece's face (contracted boxes meet the curve at their corners).
+    Box span = piece;
+    const double overlap = std::ldexp(piece[p].upper() - piece[p].lower(), -10);
+    span[p] = piece[p] + Interval(-overlap, overlap);
+    if (!domain.empty() && !intersect(span[p], domain[p], span[p])) span[p] = piece[p];
+    const SquareSystem over_t(f, all_but(n, p), span);
+    Box domain_y;
+    if (!domain.empty()) domain_y = over_t.restrict(domain);
+    const Box piece_y = over_t.restrict(piece);
+    Box yb = piece_y;
+    for (int i = 0; i < n - 1; ++i) yb[i] = hull(yb[i], Interval(y(i)));
+    const double limit = 16 * max_width(piece);
+    for (int round = 0; round < options.inflation_steps; ++round) {
+      const Box trial = widen_within(yb, options.inflation, domain_y);
+      if (max_width(trial) > limit) break;
+      const NewtonStep step = krawczyk_step(over_t, trial, c);
+      if (step.interior) {
+        Arc a = arc_from(f, over_t.embed(trial), p, c);
+        if (a.certified && contains(a.box, piece)) return a;
+        break;
+      }
+      if (!finite(step.image)) break;
+      // Rump's inflation from the image, never losing the piece: the arc's box must cover it.
+      for (int i = 0; i < n - 1; ++i) yb[i] = hull(step.image[i], piece_y[i]);
+    }
+  }
+  return none;
+}
+
+}  // namespace linkbox::newton

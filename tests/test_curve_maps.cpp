@@ -1,0 +1,187 @@
+// Certified maps of solution curves (verify/curve_map.hpp): the cases of cases/curves/ give the
+// map written in their header under several strategies and sigmas, `linkbox check` re-proves it
+// and rejects a tampered one, and what cannot be a proof never reads as one (branches that
+// cross, a mechanism that is only nearly mobile, an arc test on a box holding a crossing).
+#include "formulate/load.hpp"
+#include "newton/arc.hpp"
+#include "report/json.hpp"
+#include "solve/solve_case.hpp"
+#include "solve/strategy.hpp"
+#include "verify/certify_case.hpp"
+#include "verify/check.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+using namespace linkbox;
+
+namespace {
+
+struct Mapped {
+  formulate::LoadedCase c;
+  verify::VerifyReport v;
+  nlohmann::json j;
+};
+
+Mapped solve_text(const std::string& text, const std::string& file, const std::string& prune, double sigma) {
+  Mapped m{formulate::load_case_text(text, file), {}, {}};
+  solve::RunOptions o;
+  o.progress = false;
+  o.params.sigma = sigma;
+  o.strategy.contractors = solve::parse_strategy_list(prune);
+  const auto r = solve::solve_case(*m.c.formulation, o);
+  REQUIRE(r.complete);
+  m.v = verify::verify_case(*m.c.formulation, r);
+  m.j = report::result_json(m.c.name, m.c.file, *m.c.formulation, o, r);
+  report::add_verification(m.j, *m.c.formulation, m.v);
+  return m;
+}
+
+std::string read(const std::string& path) {
+  std::ifstream in(std::string(LINKBOX_SOURCE_DIR) + "/" + path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// "# EXPECTED MAP: isolated=0 closed=2 open=0 proved=yes" as key -> value.
+std::map<std::string, std::string> expected_map(const std::string& text) {
+  std::smatch m;
+  REQUIRE(std::regex_search(text, m, std::regex("# EXPECTED MAP:([^\n]*)")));
+  std::map<std::string, std::string> out;
+  const std::string line = m[1];
+  const std::regex pair("(\\w+)=(\\w+)");
+  for (std::sregex_iterator it(line.begin(), line.end(), pair), end; it != end; ++it)
+    out[(*it)[1]] = (*it)[2];
+  return out;
+}
+
+int proved_maps(const verify::VerifyReport& v) {
+  int k = 0;
+  for (auto& c : v.clusters) k += c.map && c.map->proved;
+  return k;
+}
+
+void require_map(const Mapped& m, const std::map<std::string, std::string>& want) {
+  const bool proved = want.at("proved") == "yes";
+  CHECK(m.v.maps_proved == proved);
+  CHECK(m.v.exact == proved);
+  CHECK(verify::check_certificates(m.j, *m.c.formulation).failures.empty());
+  if (!proved) {
+    CHECK(m.v.headline.rfind("exactly", 0) != 0);
+    return;
+  }
+  CHECK(m.v.certified_roots == std::stoi(want.at("isolated")));
+  CHECK(m.v.closed_curves == std::stoi(want.at("closed")));
+  CHECK(m.v.open_arcs == std::stoi(want.at("open")));
+}
+
+}  // namespace
+
+TEST_CASE("curve cases give the map in their header, whatever the strategy", "[verify][map]") {
+  const std::string file = GENERATE(as<std::string>{}, "cases/curves/fourbar-grashof.toml",
+                                    "cases/curves/fourbar-nongrashof.toml", "cases/curves/fourbar-half-domain.toml",
+                                    "cases/curves/circle-3d.toml", "cases/curves/fourbar-parallelogram.toml");
+  const std::string prune = GENERATE(as<std::string>{}, "auto", "hc4,newton", "hc4,newton/lp");
+  INFO(file << " under " << prune);
+  const std::string text = read(file);
+  require_map(solve_text(text, file, prune, 0.05), expected_map(text));
+}
+
+TEST_CASE("a curve's map does not depend on sigma", "[verify][map]") {
+  const double sigma = GENERATE(0.1, 0.03, 0.01);
+  INFO("sigma " << sigma);
+  const std::string file = "cases/curves/fourbar-grashof.toml";
+  const std::string text = read(file);
+  require_map(solve_text(text, file, "auto", sigma), expected_map(text));
+}
+
+TEST_CASE("crossing branches are never one proved curve: the change points are named", "[verify][map]") {
+  const std::string file = "cases/curves/fourbar-parallelogram.toml";
+  const Mapped m = solve_text(read(file), file, "auto", 0.05);
+  REQUIRE(m.v.clusters.size() == 1);
+  const auto& map = m.v.clusters[0].map;
+  REQUIRE(map);
+  CHECK_FALSE(map->proved);
+  // The two change points: (c1, s1, c3, s3) = (+-1, 0, +-1, 0), each in one region.
+  REQUIRE(map->singular_regions.size() == 2);
+  for (double sign : {-1.0, 1.0}) {
+    const std::vector<double> p{sign, 0, sign, 0};
+    bool held = false;
+    for (auto& r : map->singular_regions) {
+      bool in = true;
+      for (size_t i = 0; i < 4; ++i) in = in && contains(r[i], p[i]);
+      held = held || in;
+    }
+    CHECK(held);
+  }
+}
+
+TEST_CASE("a nearly mobile 6R loop is never a proved curve", "[verify][map]") {
+  // One link offset moved by 1e-9: the loop is rigid, its solutions are not a curve.
+  std::string text = read("cases/linkages/6r-mobile.toml");
+  const auto at = text.find("a = 0.5,");
+  REQUIRE(at != std::string::npos);
+  text.replace(at, 8, "a = 0.500000001,");
+  const Mapped m = solve_text(text, "6r-nearly-mobile.toml", "auto", 0.1);
+  CHECK(proved_maps(m.v) == 0);
+  CHECK_FALSE(m.v.maps_proved);
+  CHECK(m.v.headline.rfind("exactly", 0) != 0);
+}
+
+TEST_CASE("check rejects a tampered map", "[verify][map][check]") {
+  const std::string file = "cases/curves/fourbar-grashof.toml";
+  const Mapped m = solve_text(read(file), file, "hc4,newton", 0.05);
+  REQUIRE(verify::check_certificates(m.j, *m.c.formulation).failures.empty());
+  auto rejected = [&](auto&& edit) {
+    nlohmann::json j = m.j;
+    edit(j);
+    return !verify::check_certificates(j, *m.c.formulation).failures.empty();
+  };
+  nlohmann::json& map0 = const_cast<nlohmann::json&>(m.j)["clusters"][0]["map"];
+  REQUIRE(map0.at("arcs").size() > 2);
+  CHECK(rejected([](auto& j) { j["clusters"][0]["map"]["arcs"].erase(1); }));  // a piece left bare
+  CHECK(rejected([](auto& j) { j["clusters"][0]["map"]["components"][0]["closed"] = false; }));
+  CHECK(rejected([](auto& j) { j["verification"]["map"]["closed_curves"] = 3; }));
+  CHECK(rejected([](auto& j) {
+    auto& c = j["clusters"][0]["map"]["arcs"][0]["preconditioner"][2];
+    c[0] = 0.0, c[1] = 0.0, c[2] = 0.0;
+  }));
+  CHECK(rejected([](auto& j) {  // the arc's box no longer covers its piece
+    auto& b = j["clusters"][0]["map"]["arcs"][0]["box"];
+    const int p = j["clusters"][0]["map"]["arcs"][0]["parameter"];
+    b[p][0] = j["clusters"][0]["map"]["arcs"][0]["piece"][p][1];
+  }));
+  CHECK(rejected([](auto& j) { j["clusters"][0]["map"]["equations"] = {0, 1}; }));  // one left out
+}
+
+TEST_CASE("arc certificate: a circle's arc is proved, a crossing never", "[newton][map]") {
+  const formulate::LoadedCase c = formulate::load_case_text(R"(kind = "polynomial"
+name = "t"
+variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] } ]
+equations = [ "x^2 + y^2 - 1" ]
+)", "circle.toml");
+  const auto& sys = c.formulation->natural(0);
+  const auto f = std::make_shared<const model::CompiledSystem>(sys.equations, 2);
+  const newton::Arc a = newton::certify_arc(f, {Interval(0.6, 0.7), Interval(0.7, 0.8)}, {});
+  REQUIRE(a.certified);
+  for (auto& end : a.ends) CHECK(zero_in(sys.equations[0].eval(end)));
+  // x^2 - y^2 = 0: two lines crossing at the origin; no box holding it has a single arc.
+  const formulate::LoadedCase x = formulate::load_case_text(R"(kind = "polynomial"
+name = "t"
+variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] } ]
+equations = [ "x^2 - y^2" ]
+)", "cross.toml");
+  const auto g = std::make_shared<const model::CompiledSystem>(x.formulation->natural(0).equations, 2);
+  for (double lo : {-0.1, -0.013, -0.5})
+    for (double w : {0.2, 0.03, 1.0}) {
+      const Box b{Interval(lo, lo + w), Interval(lo * 0.7, lo * 0.7 + w)};
+      if (contains(b[0], 0.0) && contains(b[1], 0.0)) CHECK_FALSE(newton::certify_arc(g, b, {}).certified);
+    }
+  // On one line, away from the crossing, it is an arc.
+  CHECK(newton::certify_arc(g, {Interval(0.4, 0.5), Interval(0.38, 0.52)}, {}).certified);
+}

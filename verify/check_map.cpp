@@ -1,0 +1,121 @@
+#include "verify/check_map.hpp"
+
+#include "verify/curve_map.hpp"
+#include "verify/curve_map_json.hpp"
+#include "verify/subsystem.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <set>
+
+namespace linkbox::verify {
+
+namespace {
+
+using Key = std::pair<size_t, std::vector<std::pair<double, double>>>;  // (member, piece)
+
+Key key_of(size_t member, const Box& piece) {
+  Key k{member, {}};
+  for (auto& x : piece) k.second.emplace_back(x.lower(), x.upper());
+  return k;
+}
+
+// The arcs speak of every natural equation, n - 1 of them, each once.
+bool equations_fit(const CurveMap& m, size_t equations, size_t unknowns) {
+  if (m.equations.size() != equations || equations + 1 != unknowns) return false;
+  for (size_t k = 0; k < equations; ++k)
+    if (m.equations[k] != static_cast<int>(k)) return false;
+  return true;
+}
+
+// Re-proves the arcs (their image and ends recomputed) and walks every member's pieces.
+void reprove(const formulate::Formulation& f, const std::vector<Box>& members, CurveMap& m, MapCheck& out) {
+  std::map<Key, size_t> arc_at;
+  for (size_t a = 0; a < m.arcs.size(); ++a) arc_at.emplace(key_of(m.arcs[a].member, m.arcs[a].piece), a);
+  std::set<Key> unresolved;
+  for (auto& [member, piece] : m.unresolved) unresolved.insert(key_of(member, piece));
+  std::map<std::uint64_t, std::shared_ptr<const model::CompiledSystem>> kept;
+  std::vector<bool> visited(m.arcs.size(), false);
+  for (size_t k = 0; k < members.size(); ++k) {
+    const std::uint64_t chart = m.charts[k];
+    const auto& sys = f.natural(chart);
+    auto& eqs = kept[chart];
+    if (!eqs) eqs = std::make_shared<const model::CompiledSystem>(pick(sys.equations, m.equations), sys.unknowns.size());
+    Box natural;
+    try {
+      natural = f.output_to_natural(chart, members[k]);
+    } catch (const std::exception&) {
+      out.failures.push_back("a member does not fit its chart");
+      return;
+    }
+    auto is_arc = [&](const Box& piece) {
+      auto it = arc_at.find(key_of(k, piece));
+      if (it == arc_at.end()) return false;
+      MapArc& a = m.arcs[it->second];
+      const bool fits = a.chart == chart && contains(a.arc.box, piece) &&
+                        (sys.domain.empty() || contains(sys.domain, a.arc.box));
+      a.arc = newton::arc_from(eqs, a.arc.box, a.arc.parameter, a.arc.preconditioner);
+      if (!fits || !a.arc.certified) out.failures.push_back("an arc certificate does not hold on its piece");
+      visited[it->second] = true;
+      ++out.arcs;
+      return true;
+    };
+    auto is_empty = [&](const Box& piece) { return piece_empty(sys.equations, eqs, piece); };
+    walk_pieces(natural, is_arc, is_empty, [&](const Box& piece, PieceKind kind) {
+      if (kind == PieceKind::unresolved && !unresolved.count(key_of(k, piece)))
+        out.failures.push_back("a piece with neither an arc nor a proof of emptiness is not listed as unresolved");
+    });
+  }
+  if (std::find(visited.begin(), visited.end(), false) != visited.end())
+    out.failures.push_back("an arc lies on no piece of its member");
+}
+
+std::vector<std::pair<std::vector<size_t>, bool>> shape(const std::vector<MapComponent>& cs) {
+  std::vector<std::pair<std::vector<size_t>, bool>> s;
+  for (auto& c : cs) {
+    auto arcs = c.arcs;
+    std::sort(arcs.begin(), arcs.end());
+    s.emplace_back(std::move(arcs), c.closed);
+  }
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+}  // namespace
+
+MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, const std::vector<Box>& members) {
+  MapCheck out;
+  CurveMap m;
+  try {
+    m = map_from(j);
+  } catch (const std::exception& e) {
+    out.failures.push_back(std::string("a malformed map: ") + e.what());
+    return out;
+  }
+  const CurveMap stated = m;
+  const bool sizes_fit = m.charts.size() == members.size() &&
+                         std::all_of(m.arcs.begin(), m.arcs.end(), [&](auto& a) { return a.member < members.size(); }) &&
+                         std::all_of(m.unresolved.begin(), m.unresolved.end(), [&](auto& u) { return u.first < members.size(); });
+  if (!sizes_fit || members.empty()) {
+    out.failures.push_back("the map's members or charts do not match the cluster's");
+    return out;
+  }
+  const auto& sys = f.natural(m.charts[0]);
+  if (!equations_fit(m, sys.equations.size(), sys.unknowns.size())) {
+    out.failures.push_back("the map's equations are not the natural system's n - 1");
+    return out;
+  }
+  reprove(f, members, m, out);
+  if (!out.failures.empty()) return out;
+  join_arcs(f, members, m);
+  if (shape(m.components) != shape(stated.components) || m.proved != stated.proved)
+    out.failures.push_back("the map's components or its proof are not what its arcs give");
+  out.proved = out.failures.empty() && m.proved;
+  for (auto& c : m.components) ++(c.closed ? out.closed : out.open);
+  return out;
+}
+
+}  // namespace linkbox::verify

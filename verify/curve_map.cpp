@@ -1,0 +1,226 @@
+#include "verify/curve_map.hpp"
+
+#include "verify/cluster.hpp"
+#include "verify/subsystem.hpp"
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <numeric>
+
+namespace linkbox::verify {
+
+namespace {
+
+// Members whose pieces are left unresolved, beyond which a cluster is not mapped at all: its
+// boxes do not follow a regular curve of the kept equations (a singular isolated root, a
+// surface), and trying every piece of every member would only cost time.
+bool too_many_unresolved(size_t unresolved_members, size_t done) {
+  return done >= 8 && 2 * unresolved_members > done;
+}
+
+size_t find(std::vector<size_t>& parent, size_t a) {
+  while (parent[a] != a) a = parent[a] = parent[parent[a]];
+  return a;
+}
+
+// An end's enclosure carried into another chart's natural unknowns (the same box when the
+// charts agree); empty when it cannot be carried.
+std::optional<Box> in_chart(const formulate::Formulation& f, const Box& end, std::uint64_t from, std::uint64_t to) {
+  if (from == to) return end;
+  try {
+    return f.output_to_natural(to, f.natural_to_output(from, end));
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+bool disjoint(const Box& a, const Box& b) { return a.size() != b.size() || !overlaps(a, b); }
+
+// Whether end `side` of `a` lies on the boundary of the natural domain (empty: unbounded).
+bool on_domain_boundary(const newton::Arc& a, int side, const Box& domain) {
+  if (domain.empty()) return false;
+  const Interval& t = a.box[a.parameter];
+  const Interval& d = domain[a.parameter];
+  return side == 0 ? t.lower() <= d.lower() : t.upper() >= d.upper();
+}
+
+std::string plural(size_t k, const char* one, const char* many) {
+  return std::to_string(k) + " " + (k == 1 ? one : many);
+}
+
+void state(CurveMap& map) {
+  size_t closed = 0;
+  for (auto& c : map.components) closed += c.closed;
+  const size_t open = map.components.size() - closed;
+  std::string what;
+  if (closed) what = plural(closed, "closed curve", "closed curves");
+  if (open) what += (what.empty() ? "" : " and ") + plural(open, "open arc", "open arcs") + " (ending on the domain's boundary)";
+  if (what.empty()) what = "no arc";
+  if (map.proved) {
+    map.statement = what + ", proved: " + plural(map.arcs.size(), "arc certificate", "arc certificates") +
+                    ", no singular point";
+    return;
+  }
+  std::string why;
+  if (!map.unresolved.empty())
+    why += std::string(why.empty() ? "" : "; ") + plural(map.unresolved.size(), "piece", "pieces") +
+           " where no arc was proved, in " + plural(map.singular_regions.size(), "region", "regions") +
+           " (possible singular points)";
+  if (map.undecided_ends) why += std::string(why.empty() ? "" : "; ") + plural(map.undecided_ends, "arc end", "arc ends") + " not placed";
+  if (map.loose_ends) why += std::string(why.empty() ? "" : "; ") + plural(map.loose_ends, "arc end", "arc ends") + " not continued";
+  map.statement = "arcs joined into " + plural(map.components.size(), "branch", "branches") + ", not proved: " + why;
+}
+
+// Members tried whole before a cluster is mapped, and how many must hold an arc: a cluster
+// whose boxes do not follow a regular curve of the kept equations (a singular isolated root,
+// a curve only of the whole system) fails here at the cost of 16 arc tests, not a walk of
+// every member's pieces.
+constexpr size_t kSample = 16, kSampleNeeded = 12;
+
+template <class KeptIn>
+bool sample_has_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
+                     const std::vector<std::uint64_t>& charts, KeptIn&& kept_in, const newton::NewtonOptions& options) {
+  const size_t tries = std::min(kSample, members.size());
+  size_t passed = 0;
+  for (size_t s = 0; s < tries; ++s) {
+    const size_t k = s * members.size() / tries;
+    try {
+      const Box natural = f.output_to_natural(charts[k], members[k]);
+      passed += newton::certify_arc(kept_in(charts[k]), natural, f.natural(charts[k]).domain, options).certified;
+    } catch (const std::exception&) {
+    }
+  }
+  return passed * kSample >= kSampleNeeded * tries;
+}
+
+// The unresolved pieces in output variables, grouped where they touch, as hulls.
+std::vector<Box> regions(const formulate::Formulation& f, const CurveMap& map, bool angles) {
+  std::vector<Box> pieces;
+  for (auto& [member, piece] : map.unresolved) pieces.push_back(f.natural_to_output(map.charts[member], piece));
+  std::vector<Box> out;
+  if (pieces.empty()) return out;
+  for (auto& g : cluster_boxes(pieces, std::vector<bool>(pieces[0].size(), angles))) {
+    Box h = pieces[g[0]];
+    for (int i : g) h = hull(h, pieces[i]);
+    out.push_back(h);
+  }
+  return out;
+}
+
+}  // namespace
+
+bool piece_empty(const std::vector<model::Polynomial>& all, const std::shared_ptr<const model::CompiledSystem>& kept,
+                 const Box& piece) {
+  for (auto& e : all)
+    if (!zero_in(e.eval(piece))) return true;
+  return newton::arc_excluded(kept, piece);
+}
+
+void join_arcs(const formulate::Formulation& f, const std::vector<Box>& members, CurveMap& map) {
+  const size_t count = map.arcs.size();
+  std::vector<size_t> parent(count);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<bool> touches_boundary(count, false);
+  map.undecided_ends = map.loose_ends = 0;
+  for (size_t a = 0; a < count; ++a) {
+    const MapArc& ma = map.arcs[a];
+    const Box& domain = f.natural(ma.chart).domain;
+    for (int side = 0; side < 2; ++side) {
+      // An end on the boundary needs no continuation, but is joined like any other: the
+      // proof that every shared point is found needs every end.
+      const bool boundary = on_domain_boundary(ma.arc, side, domain);
+      touches_boundary[a] = touches_boundary[a] || boundary;
+      std::map<std::uint64_t, std::optional<Box>> carried;
+      bool continued = boundary;
+      for (size_t c = 0; c < count; ++c) {
+        if (c == a) continue;
+        const MapArc& mc = map.arcs[c];
+        auto it = carried.find(mc.chart);
+        if (it == carried.end()) it = carried.emplace(mc.chart, in_chart(f, ma.arc.ends[side], ma.chart, mc.chart)).first;
+        const auto& end = it->second;
+        if (!end) {
+          ++map.undecided_ends;
+          continue;
+        }
+        if (disjoint(*end, mc.arc.box)) continue;
+        if (contains(mc.arc.box, *end)) {
+          continued = true;
+          parent[find(parent, a)] = find(parent, c);
+        } else if (!disjoint(*end, mc.arc.image)) {
+          ++map.undecided_ends;  // in the box's enclosure of its arc, astride the box
+        }
+      }
+      if (!continued) ++map.loose_ends;
+    }
+  }
+  std::map<size_t, size_t> component_of;
+  map.components.clear();
+  for (size_t a = 0; a < count; ++a) {
+    const size_t root = find(parent, a);
+    auto [it, fresh] = component_of.emplace(root, map.components.size());
+    if (fresh) {
+      map.components.emplace_back();
+      map.components.back().closed = true;
+    }
+    MapComponent& c = map.components[it->second];
+    c.arcs.push_back(a);
+    c.closed = c.closed && !touches_boundary[a];
+    const Box& m = members.at(map.arcs[a].member);
+    c.extent = c.extent.empty() ? m : hull(c.extent, m);
+  }
+  map.proved = map.unresolved.empty() && map.undecided_ends == 0 && map.loose_ends == 0 &&
+               count > 0;
+  state(map);
+}
+
+std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::vector<Box>& members,
+                                    const std::vector<std::uint64_t>& charts, const newton::NewtonOptions& options) {
+  const auto& first = f.natural(charts.at(0));
+  const size_t n = first.unknowns.size(), m = first.equations.size();
+  if (n < 2 || m + 1 != n || members.empty()) return std::nullopt;
+  CurveMap map;
+  map.charts = charts;
+  map.equations = rows_except(m, {});
+  std::map<std::uint64_t, std::shared_ptr<const model::CompiledSystem>> kept;
+  auto kept_in = [&](std::uint64_t chart) -> const std::shared_ptr<const model::CompiledSystem>& {
+    auto& eqs = kept[chart];
+    if (!eqs) eqs = std::make_shared<const model::CompiledSystem>(pick(f.natural(chart).equations, map.equations), n);
+    return eqs;
+  };
+  if (!sample_has_arcs(f, members, charts, kept_in, options)) return std::nullopt;
+  std::vector<size_t> unresolved_members;
+  for (size_t k = 0; k < members.size(); ++k) {
+    const auto& sys = f.natural(charts[k]);
+    const auto& eqs = kept_in(charts[k]);
+    Box natural;
+    try {
+      natural = f.output_to_natural(charts[k], members[k]);
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+    bool unresolved = false;
+    walk_pieces(
+        natural,
+        [&](const Box& piece) {
+          newton::Arc a = newton::certify_arc(eqs, piece, sys.domain, options);
+          if (!a.certified) return false;
+          map.arcs.push_back({k, charts[k], piece, std::move(a)});
+          return true;
+        },
+        [&](const Box& piece) { return piece_empty(sys.equations, eqs, piece); },
+        [&](const Box& piece, PieceKind kind) {
+          if (kind != PieceKind::unresolved) return;
+          map.unresolved.emplace_back(k, piece);
+          unresolved = true;
+        });
+    if (unresolved) unresolved_members.push_back(k);
+    if (too_many_unresolved(unresolved_members.size(), k + 1)) return std::nullopt;
+  }
+  if (map.arcs.empty()) return std::nullopt;
+  map.singular_regions = regions(f, map, f.outputs_are_angles());
+  join_arcs(f, members, map);
+  return map;
+}
+
+}  // namespace linkbox::verify

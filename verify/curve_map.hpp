@@ -1,0 +1,87 @@
+#pragma once
+// Certified maps of curve clusters. Each member box of a cluster is covered by pieces (the
+// box in its chart's natural unknowns, bisected where needed): on each, either an arc
+// certificate (newton/arc.hpp) shows that the zero set of the kept equations there is exactly
+// one arc, or evaluation shows that an equation misses 0. Arcs are then joined where an end
+// of one lies in the box of another, into components.
+//
+// Why the components are exact: if two arcs a and c share a point, follow the common part
+// within both boxes; it can leave a box only through that box's parameter faces (an arc
+// never touches its other faces), so one end of a lies in the box of c or one end of c in the
+// box of a, and that end is a point of the other's arc (the zero set in a box is its arc).
+// So every shared point shows as an end inside another box, decided on the ends' enclosures;
+// an enclosure that straddles a box is not decided, and the map is then not proved.
+#include "formulate/formulation.hpp"
+#include "newton/arc.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace linkbox::verify {
+
+struct MapArc {
+  size_t member = 0;        // index into the cluster's boxes
+  std::uint64_t chart = 0;  // the natural unknowns the arc is in
+  Box piece;                // the part of the member's natural box the arc covers
+  newton::Arc arc;
+};
+
+struct MapComponent {
+  std::vector<size_t> arcs;  // indices into CurveMap::arcs
+  bool closed = false;       // no arc ends on the domain's boundary
+  Box extent;                // output variables: hull of the members its arcs cover
+};
+
+struct CurveMap {
+  std::vector<std::uint64_t> charts;  // per member: the chart its pieces are in
+  std::vector<int> equations;  // natural equations whose zero set the arcs are (all, n - 1)
+  std::vector<MapArc> arcs;
+  std::vector<std::pair<size_t, Box>> unresolved;  // (member, piece): no arc, not proved empty
+  std::vector<MapComponent> components;
+  // Groups of touching unresolved pieces (output variables): where a singular point may be.
+  std::vector<Box> singular_regions;
+  int undecided_ends = 0;  // end enclosures that straddle another arc's box
+  int loose_ends = 0;      // ends inside the domain that no other arc's box holds
+  // The solution set in the cluster's boxes is exactly the union of the components, each a
+  // smooth closed curve or an arc ending on the domain's boundary.
+  bool proved = false;
+  std::string statement;  // the map in words, with what is not proved and why
+};
+
+// Bisection depth of a member's pieces: at most 2^kMapDepth pieces per member.
+constexpr int kMapDepth = 5;
+
+// What covers one piece: an arc, an exclusion, or neither at the depth limit.
+enum class PieceKind { arc, empty, unresolved };
+
+// Walks the pieces of a member's natural box `box` as the map covers it: `is_arc(piece)`
+// first, then `is_empty(piece)`, then bisection (widest side, at the midpoint) down to
+// kMapDepth; `leaf` hears every final piece. Producer and checker walk the same tree.
+template <class IsArc, class IsEmpty, class Leaf>
+void walk_pieces(const Box& box, IsArc&& is_arc, IsEmpty&& is_empty, Leaf&& leaf, int depth = 0) {
+  if (is_arc(box)) return leaf(box, PieceKind::arc);
+  if (is_empty(box)) return leaf(box, PieceKind::empty);
+  if (depth >= kMapDepth) return leaf(box, PieceKind::unresolved);
+  auto [lo, hi] = bisect(box, widest_dimension(box));
+  walk_pieces(lo, is_arc, is_empty, leaf, depth + 1);
+  walk_pieces(hi, is_arc, is_empty, leaf, depth + 1);
+}
+
+// Whether a piece provably holds no solution: an equation of `all` misses 0 over it, or the
+// kept equations have no root there (newton::arc_excluded). Both recomputed by the checker.
+bool piece_empty(const std::vector<model::Polynomial>& all, const std::shared_ptr<const model::CompiledSystem>& kept,
+                 const Box& piece);
+
+// The map of a cluster whose members (output variables, unwrapped) lie in `charts`; empty
+// when the natural system is not n - 1 equations in n unknowns (a structurally redundant
+// system, such as a mobile loop's closure, needs an argument this map does not make), or when
+// arcs hold on too few of the members to state one.
+std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::vector<Box>& members,
+                                    const std::vector<std::uint64_t>& charts, const newton::NewtonOptions& options);
+
+// Joins `map.arcs` into components and sets undecided_ends, loose_ends, proved and the
+// statement. `members` are the cluster's boxes in output variables.
+void join_arcs(const formulate::Formulation& f, const std::vector<Box>& members, CurveMap& map);
+
+}  // namespace linkbox::verify
