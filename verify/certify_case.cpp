@@ -120,6 +120,22 @@ void map_curve(const formulate::Formulation& f, const std::vector<Box>& member, 
   c.reason = c.map->statement;
 }
 
+// Proved maps of two clusters whose arcs may meet could count one curve twice: both are
+// then stated as not proved.
+void separate_maps(const formulate::Formulation& f, VerifyReport& report) {
+  auto& cs = report.clusters;
+  for (size_t i = 0; i < cs.size(); ++i)
+    for (size_t k = i + 1; k < cs.size(); ++k) {
+      if (!cs[i].map || !cs[k].map || !cs[i].map->proved || !cs[k].map->proved) continue;
+      if (maps_apart(f, *cs[i].map, *cs[k].map)) continue;
+      for (size_t c : {i, k}) {
+        cs[c].map->proved = false;
+        cs[c].map->statement += "; not proved: its arcs may meet another cluster's";
+        cs[c].reason = cs[c].map->statement;
+      }
+    }
+}
+
 }  // namespace
 
 std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& f, const solve::CaseResult& result,
@@ -204,6 +220,7 @@ VerifyReport conclude(const formulate::Formulation& f, std::vector<ClusterReport
   const std::vector<bool> periodic(f.output_names().size(), f.outputs_are_angles());
   const int overlaps_unresolved = merge_duplicates(f, report, periodic, options.newton);
   report.inequalities = static_cast<int>(f.natural(0).inequalities.size());
+  separate_maps(f, report);
   summarise(report, overlaps_unresolved, result);
   return report;
 }

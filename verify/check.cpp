@@ -3,6 +3,7 @@
 #include "newton/certify.hpp"
 #include "newton/interval_newton.hpp"
 #include "verify/check_map.hpp"
+#include "verify/curve_map_json.hpp"
 #include "verify/cluster.hpp"
 
 #include <Eigen/LU>
@@ -174,6 +175,7 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
   std::map<std::pair<size_t, size_t>, size_t> owner;
   std::vector<size_t> duplicates;  // certified clusters marked duplicate_of another
   std::vector<size_t> proved_maps;  // curve clusters whose map re-proves as proved
+  std::vector<CurveMap> proved_map_data;
   int certified = 0, closed_curves = 0, open_arcs = 0;
   const std::vector<bool> periodic(outputs, angles);
   const auto& clusters = j.at("clusters");
@@ -289,6 +291,7 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
         out.checked += mc.arcs;
         for (auto& why : mc.failures) out.failures.push_back(where + ": its map: " + why);
         if (mc.proved) {
+          proved_map_data.push_back(map_from(c.at("map")));
           proved_maps.push_back(i);
           closed_curves += mc.closed, open_arcs += mc.open;
         }
@@ -387,6 +390,11 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
                                (status == "certified" ? "not proved to hold only its root" : status));
     }
   }
+  for (size_t a = 0; a < proved_map_data.size(); ++a)
+    for (size_t b = a + 1; b < proved_map_data.size(); ++b)
+      if (!maps_apart(f, proved_map_data[a], proved_map_data[b]))
+        out.failures.push_back("clusters " + std::to_string(proved_maps[a]) + " and " + std::to_string(proved_maps[b]) +
+                               ": proved maps whose arcs may meet");
   if (j.contains("verification") && j.at("verification").contains("map")) {
     const json& m = j.at("verification").at("map");
     if (m.value("closed_curves", -1) != closed_curves || m.value("open_arcs", -1) != open_arcs)

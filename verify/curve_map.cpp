@@ -174,6 +174,19 @@ void join_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
   state(map);
 }
 
+bool maps_apart(const formulate::Formulation& f, const CurveMap& a, const CurveMap& b) {
+  auto ends_miss = [&](const CurveMap& from, const CurveMap& to) {
+    for (auto& ma : from.arcs)
+      for (auto& end : ma.arc.ends)
+        for (auto& mc : to.arcs) {
+          const auto e = in_chart(f, end, ma.chart, mc.chart);
+          if (!e || !disjoint(*e, mc.arc.box)) return false;
+        }
+    return true;
+  };
+  return ends_miss(a, b) && ends_miss(b, a);
+}
+
 std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::vector<Box>& members,
                                     const std::vector<std::uint64_t>& charts, const newton::NewtonOptions& options) {
   const auto& first = f.natural(charts.at(0));

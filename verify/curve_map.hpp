@@ -84,4 +84,10 @@ std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::
 // statement. `members` are the cluster's boxes in output variables.
 void join_arcs(const formulate::Formulation& f, const std::vector<Box>& members, CurveMap& map);
 
+// Whether no arc of `a` can share a point with an arc of `b` (maps of two clusters): by the
+// argument above, a shared point shows as an end of one meeting the box of the other. Two
+// clusters' boxes never touch, but an arc's box reaches beyond its piece, so this is what
+// keeps one curve from being counted in two clusters.
+bool maps_apart(const formulate::Formulation& f, const CurveMap& a, const CurveMap& b);
+
 }  // namespace linkbox::verify
