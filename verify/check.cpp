@@ -3,7 +3,6 @@
 #include "newton/certify.hpp"
 #include "newton/interval_newton.hpp"
 #include "verify/check_map.hpp"
-#include "verify/curve_map_json.hpp"
 #include "verify/cluster.hpp"
 
 #include <Eigen/LU>
@@ -287,11 +286,12 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
           // Unwrapped towards the first member, as verification unwrapped them.
           if (it != solutions.end()) boxes.push_back(boxes.empty() ? it->second : unwrapped(it->second, boxes[0], angles));
         }
-        const MapCheck mc = boxes.size() == c.at("members").size() ? check_map(c.at("map"), f, boxes) : MapCheck{{"members missing"}};
+        MapCheck mc = boxes.size() == c.at("members").size() ? check_map(c.at("map"), f, boxes, chart_exists)
+                                                              : MapCheck{{"members missing"}, false, 0, 0, 0, {}};
         out.checked += mc.arcs;
         for (auto& why : mc.failures) out.failures.push_back(where + ": its map: " + why);
         if (mc.proved) {
-          proved_map_data.push_back(map_from(c.at("map")));
+          proved_map_data.push_back(std::move(mc.map));  // as re-proved, never as written
           proved_maps.push_back(i);
           closed_curves += mc.closed, open_arcs += mc.open;
         }

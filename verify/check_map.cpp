@@ -1,6 +1,5 @@
 #include "verify/check_map.hpp"
 
-#include "verify/curve_map.hpp"
 #include "verify/curve_map_json.hpp"
 #include "verify/subsystem.hpp"
 
@@ -86,7 +85,8 @@ std::vector<std::pair<std::vector<size_t>, bool>> shape(const std::vector<MapCom
 
 }  // namespace
 
-MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, const std::vector<Box>& members) {
+MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, const std::vector<Box>& members,
+                   const std::function<bool(std::uint64_t)>& chart_exists) {
   MapCheck out;
   CurveMap m;
   try {
@@ -98,7 +98,8 @@ MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, con
   const CurveMap stated = m;
   const bool sizes_fit = m.charts.size() == members.size() &&
                          std::all_of(m.arcs.begin(), m.arcs.end(), [&](auto& a) { return a.member < members.size(); }) &&
-                         std::all_of(m.unresolved.begin(), m.unresolved.end(), [&](auto& u) { return u.first < members.size(); });
+                         std::all_of(m.unresolved.begin(), m.unresolved.end(), [&](auto& u) { return u.first < members.size(); }) &&
+                         std::all_of(m.charts.begin(), m.charts.end(), chart_exists);
   if (!sizes_fit || members.empty()) {
     out.failures.push_back("the map's members or charts do not match the cluster's");
     return out;
@@ -115,6 +116,7 @@ MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, con
     out.failures.push_back("the map's components or its proof are not what its arcs give");
   out.proved = out.failures.empty() && m.proved;
   for (auto& c : m.components) ++(c.closed ? out.closed : out.open);
+  out.map = std::move(m);
   return out;
 }
 

@@ -78,27 +78,38 @@ void state(CurveMap& map) {
 // every member's pieces.
 constexpr size_t kSample = 16, kSampleNeeded = 12;
 
+// The sample's arcs by member (uncertified ones too, so no member is tried twice whole);
+// empty when too few hold.
 template <class KeptIn>
-bool sample_has_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
-                     const std::vector<std::uint64_t>& charts, KeptIn&& kept_in, const newton::NewtonOptions& options) {
+std::map<size_t, newton::Arc> sample_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
+                                          const std::vector<std::uint64_t>& charts, KeptIn&& kept_in,
+                                          const newton::NewtonOptions& options) {
   const size_t tries = std::min(kSample, members.size());
+  std::map<size_t, newton::Arc> sample;
   size_t passed = 0;
   for (size_t s = 0; s < tries; ++s) {
     const size_t k = s * members.size() / tries;
     try {
       const Box natural = f.output_to_natural(charts[k], members[k]);
-      passed += newton::certify_arc(kept_in(charts[k]), natural, f.natural(charts[k]).domain, options).certified;
+      newton::Arc a = newton::certify_arc(kept_in(charts[k]), natural, f.natural(charts[k]).domain, options);
+      passed += a.certified;
+      sample.emplace(k, std::move(a));
     } catch (const std::exception&) {
     }
   }
-  return passed * kSample >= kSampleNeeded * tries;
+  if (passed * kSample < kSampleNeeded * tries) sample.clear();
+  return sample;
 }
 
 // The unresolved pieces in output variables, grouped where they touch, as hulls.
 std::vector<Box> regions(const formulate::Formulation& f, const CurveMap& map, bool angles) {
   std::vector<Box> pieces;
-  for (auto& [member, piece] : map.unresolved) pieces.push_back(f.natural_to_output(map.charts[member], piece));
   std::vector<Box> out;
+  try {
+    for (auto& [member, piece] : map.unresolved) pieces.push_back(f.natural_to_output(map.charts[member], piece));
+  } catch (const std::exception&) {
+    return out;  // named only where they can be carried to the outputs
+  }
   if (pieces.empty()) return out;
   for (auto& g : cluster_boxes(pieces, std::vector<bool>(pieces[0].size(), angles))) {
     Box h = pieces[g[0]];
@@ -201,7 +212,8 @@ std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::
     if (!eqs) eqs = std::make_shared<const model::CompiledSystem>(pick(f.natural(chart).equations, map.equations), n);
     return eqs;
   };
-  if (!sample_has_arcs(f, members, charts, kept_in, options)) return std::nullopt;
+  std::map<size_t, newton::Arc> sample = sample_arcs(f, members, charts, kept_in, options);
+  if (sample.empty()) return std::nullopt;
   std::vector<size_t> unresolved_members;
   for (size_t k = 0; k < members.size(); ++k) {
     const auto& sys = f.natural(charts[k]);
@@ -212,11 +224,15 @@ std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::
     } catch (const std::exception&) {
       return std::nullopt;
     }
-    bool unresolved = false;
+    bool unresolved = false, whole = true;
     walk_pieces(
         natural,
         [&](const Box& piece) {
-          newton::Arc a = newton::certify_arc(eqs, piece, sys.domain, options);
+          // The walk asks for the whole member first, which the sample may have tried.
+          auto tried = whole ? sample.find(k) : sample.end();
+          whole = false;
+          newton::Arc a = tried != sample.end() ? std::move(tried->second)
+                                                : newton::certify_arc(eqs, piece, sys.domain, options);
           if (!a.certified) return false;
           map.arcs.push_back({k, charts[k], piece, std::move(a)});
           return true;

@@ -1,5 +1,6 @@
 #include "newton/arc.hpp"
 
+#include "newton/float_system.hpp"
 #include "newton/interval_newton.hpp"
 
 #include <Eigen/LU>
@@ -25,39 +26,25 @@ bool finite(const Box& b) {
   return std::all_of(b.begin(), b.end(), [](const Interval& x) { return is_finite(x); });
 }
 
-// Float values and dense Jacobian of the n-1 equations at x: guesses only.
-struct FloatCurve {
-  const model::CompiledSystem& f;
-  Eigen::VectorXd values(const Eigen::VectorXd& x) const {
-    Eigen::VectorXd v(f.rows());
-    f.values_float(x.data(), v.data());
-    return v;
-  }
-  Eigen::MatrixXd jacobian(const Eigen::VectorXd& x) const {
-    std::vector<double> e(f.nonzeros());
-    f.jacobian_float(x.data(), e.data());
-    Eigen::MatrixXd j = Eigen::MatrixXd::Zero(f.rows(), f.cols());
-    for (int k = 0; k < f.nonzeros(); ++k) j(f.entry_row(k), f.entry_col(k)) += e[k];
-    return j;
-  }
-};
-
-// A point of the curve near x (minimum-norm Gauss-Newton steps) and the curve's tangent there.
-std::optional<std::pair<Eigen::VectorXd, Eigen::VectorXd>> curve_point(const FloatCurve& c, Eigen::VectorXd x) {
-  for (int k = 0; k < 30; ++k) {
-    const Eigen::VectorXd fx = c.values(x);
-    if (!fx.allFinite()) return std::nullopt;
-    const Eigen::MatrixXd j = c.jacobian(x);
-    const Eigen::VectorXd dx = j.completeOrthogonalDecomposition().solve(fx);
-    if (!dx.allFinite()) return std::nullopt;
-    x -= dx;
-    if (dx.lpNorm<Eigen::Infinity>() <= 1e-14 * (1 + x.lpNorm<Eigen::Infinity>())) break;
-  }
-  const Eigen::MatrixXd j = c.jacobian(x);
+// A point of the curve near the piece's centre and the curve's tangent there (float: they
+// only choose the parameter and the preconditioner).
+std::optional<std::pair<Eigen::VectorXd, Eigen::VectorXd>> curve_point(const FloatSystem& fs, const Box& piece) {
+  const Eigen::VectorXd x = fs.solve_from(centre(piece));
+  const Eigen::MatrixXd j = fs.jacobian(x);
+  if (!x.allFinite() || !j.allFinite()) return std::nullopt;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeFullV);
-  Eigen::VectorXd v = svd.matrixV().col(j.cols() - 1);
-  if (!x.allFinite() || !v.allFinite()) return std::nullopt;
-  return std::make_pair(x, v);
+  return std::make_pair(x, Eigen::VectorXd(svd.matrixV().col(j.cols() - 1)));
+}
+
+// The float inverse of `j`, empty when it is singular or not finite. Any C keeps a Krawczyk
+// test sound; this one only makes it succeed.
+std::optional<Eigen::MatrixXd> inverse_of(const Eigen::MatrixXd& j) {
+  if (j.size() == 0 || !j.allFinite()) return std::nullopt;
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(j);
+  if (!(lu.rcond() >= NewtonOptions{}.singular_rcond)) return std::nullopt;
+  Eigen::MatrixXd c = lu.inverse();
+  if (!c.allFinite()) return std::nullopt;
+  return c;
 }
 
 // Parameters in order of how fast the curve crosses the piece along them: |v_p| / width_p.
@@ -95,12 +82,8 @@ Box end_on(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box
   for (int k = 0; k < kEndSteps; ++k) {
     // After two rounds with the arc's C, the inverse midpoint Jacobian of the end's own
     // enclosure: it contracts quadratically (any C keeps the enclosure sound).
-    if (k == 2) {
-      const Eigen::MatrixXd jm = midpoint(s.jacobian(y));
-      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm);
-      if (jm.allFinite() && lu.rcond() > 1e-14) ck = lu.inverse();
-      if (!ck.allFinite()) ck = c;
-    }
+    if (k == 2)
+      if (auto own = inverse_of(midpoint(s.jacobian(y)))) ck = std::move(*own);
     const NewtonStep step = krawczyk_step(s, y, ck);
     Box next = y;
     bool ok = finite(step.image);
@@ -111,26 +94,36 @@ Box end_on(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box
   return s.embed(y);
 }
 
+// The arc that the Krawczyk step `step` of s (over box, parameter p, C) proves, if it does.
+Arc arc_of(const std::shared_ptr<const model::CompiledSystem>& f, const SquareSystem& s, const NewtonStep& step,
+           const Box& box, int p, const Eigen::MatrixXd& c) {
+  Arc a;
+  a.parameter = p;
+  a.box = box;
+  a.preconditioner = c;
+  if (!step.interior) return a;
+  a.certified = true;
+  a.image = s.embed(step.image);
+  a.ends[0] = end_on(f, box, p, box[p].lower(), c);
+  a.ends[1] = end_on(f, box, p, box[p].upper(), c);
+  return a;
+}
+
 }  // namespace
 
 Arc arc_from(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box, int parameter,
              const Eigen::MatrixXd& preconditioner) {
-  Arc a;
-  a.parameter = parameter;
-  a.box = box;
-  a.preconditioner = preconditioner;
   const int n = static_cast<int>(box.size());
   if (n < 2 || f->rows() != n - 1 || f->cols() != n || parameter < 0 || parameter >= n || !finite(box) ||
-      preconditioner.rows() != n - 1 || preconditioner.cols() != n - 1 || !preconditioner.allFinite())
+      preconditioner.rows() != n - 1 || preconditioner.cols() != n - 1 || !preconditioner.allFinite()) {
+    Arc a;
+    a.parameter = parameter;
+    a.box = box;
+    a.preconditioner = preconditioner;
     return a;
+  }
   const SquareSystem s(f, all_but(n, parameter), box);
-  const NewtonStep step = krawczyk_step(s, s.restrict(box), preconditioner);
-  if (!step.interior) return a;
-  a.certified = true;
-  a.image = s.embed(step.image);
-  a.ends[0] = end_on(f, box, parameter, box[parameter].lower(), preconditioner);
-  a.ends[1] = end_on(f, box, parameter, box[parameter].upper(), preconditioner);
-  return a;
+  return arc_of(f, s, krawczyk_step(s, s.restrict(box), preconditioner), box, parameter, preconditioner);
 }
 
 bool arc_excluded(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box) {
@@ -139,11 +132,8 @@ bool arc_excluded(const std::shared_ptr<const model::CompiledSystem>& f, const B
   for (int p = 0; p < n; ++p) {
     const SquareSystem s(f, all_but(n, p), box);
     const Box y = s.restrict(box);
-    const Eigen::MatrixXd jm = midpoint(s.jacobian(y));
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm);
-    if (!jm.allFinite() || !(lu.rcond() > 1e-14)) continue;
-    const Eigen::MatrixXd c = lu.inverse();
-    if (c.allFinite() && krawczyk_step(s, y, c).excluded) return true;
+    const auto c = inverse_of(midpoint(s.jacobian(y)));
+    if (c && krawczyk_step(s, y, *c).excluded) return true;
   }
   return false;
 }
@@ -154,10 +144,7 @@ Arc certify_arc(const std::shared_ptr<const model::CompiledSystem>& f, const Box
   none.box = piece;
   const int n = static_cast<int>(piece.size());
   if (n < 2 || f->rows() != n - 1 || f->cols() != n || !finite(piece)) return none;
-  const FloatCurve fc{*f};
-  Eigen::VectorXd mid(n);
-  for (int i = 0; i < n; ++i) mid(i) = median(piece[i]);
-  const auto point = curve_point(fc, mid);
+  const auto point = curve_point(FloatSystem(f), piece);
   if (!point) return none;
   const auto& [x, tangent] = *point;
   const std::vector<int> order = parameter_order(tangent, piece);
@@ -176,11 +163,9 @@ Arc certify_arc(const std::shared_ptr<const model::CompiledSystem>& f, const Box
       y -= dy;
       if (dy.lpNorm<Eigen::Infinity>() <= 1e-15 * (1 + y.lpNorm<Eigen::Infinity>())) break;
     }
-    const Eigen::MatrixXd jy = at_mid.jacobian_at(y);
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jy);
-    if (!jy.allFinite() || !(lu.rcond() >= options.singular_rcond)) continue;
-    const Eigen::MatrixXd c = lu.inverse();
-    if (!c.allFinite()) continue;
+    const auto inverse = inverse_of(at_mid.jacobian_at(y));
+    if (!inverse) continue;
+    const Eigen::MatrixXd& c = *inverse;
     // The parameter's side overlaps the neighbouring pieces a little, so that an end never
     // lies on another piece's face (contracted boxes meet the curve at their corners).
     Box span = piece;
@@ -199,8 +184,8 @@ Arc certify_arc(const std::shared_ptr<const model::CompiledSystem>& f, const Box
       if (max_width(trial) > limit) break;
       const NewtonStep step = krawczyk_step(over_t, trial, c);
       if (step.interior) {
-        Arc a = arc_from(f, over_t.embed(trial), p, c);
-        if (a.certified && contains(a.box, piece)) return a;
+        Arc a = arc_of(f, over_t, step, over_t.embed(trial), p, c);
+        if (contains(a.box, piece)) return a;
         break;
       }
       if (!finite(step.image)) break;

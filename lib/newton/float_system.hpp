@@ -14,6 +14,7 @@ namespace linkbox::newton {
 class FloatSystem {
  public:
   FloatSystem(const std::vector<model::Polynomial>& f, size_t unknowns);
+  explicit FloatSystem(std::shared_ptr<const model::CompiledSystem> f) : f_(std::move(f)) {}
   Eigen::VectorXd values(const Eigen::VectorXd& x) const;
   Eigen::MatrixXd jacobian(const Eigen::VectorXd& x) const;
   // Gauss-Newton with the pseudo-inverse: onto a curve, or the least-squares point of an
