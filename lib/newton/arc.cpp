@@ -47,6 +47,55 @@ std::optional<Eigen::MatrixXd> inverse_of(const Eigen::MatrixXd& j) {
   return c;
 }
 
+// The parametric Krawczyk step over B = box (t its side p, Y the others), in mean-value form
+// in t as well as in y: with (t^, y^) the midpoint,
+//   K = y^ - C F(t^, y^) - C F_t(B) ([t] - t^) + (I - C F_y(B)) (Y - y^).
+// For each t in [t], F(t, y^) lies in F(t^, y^) + F_t(B) (t - t^) (mean value theorem), so
+// the Krawczyk image with t held fixed lies in K. Evaluating F over [t] instead widens the
+// image by the cancellation among a polynomial's terms, which the Jacobian's width avoids.
+NewtonStep parametric_krawczyk(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box, int p,
+                               const Eigen::MatrixXd& c) {
+  const int n = static_cast<int>(box.size());
+  std::vector<FastInterval> d(f->nonzeros());
+  {
+    RoundingGuard guard;
+    f->jacobian(box, d.data());
+  }
+  IMatrix jy = IMatrix::Constant(n - 1, n - 1, Interval(0.0));
+  IVector jt = IVector::Constant(n - 1, Interval(0.0));
+  for (int e = 0; e < f->nonzeros(); ++e) {
+    const int row = f->entry_row(e), col = f->entry_col(e);
+    const Interval v(d[e].lower(), d[e].upper());
+    if (col == p) jt(row) = v;
+    else jy(row, col < p ? col : col - 1) = v;
+  }
+  Box base = box;
+  base[p] = Interval(median(box[p]));
+  const SquareSystem at_mid(f, all_but(n, p), base);
+  const Box y = at_mid.restrict(box);
+  Eigen::VectorXd centre_y(n - 1);
+  IVector offset(n - 1);
+  for (int i = 0; i < n - 1; ++i) {
+    centre_y(i) = median(y[i]);
+    offset(i) = y[i] - centre_y(i);
+  }
+  IVector rhs = at_mid.values(point_box(centre_y));
+  const Interval dt = box[p] - base[p];
+  for (int i = 0; i < n - 1; ++i) rhs(i) += jt(i) * dt;
+  const IVector k = -multiply(c, rhs) + multiply(identity_minus(c, jy), offset);
+  NewtonStep step;
+  step.image.resize(n - 1);
+  step.interior = true;
+  for (int i = 0; i < n - 1; ++i) {
+    step.image[i] = centre_y(i) + k(i);
+    const Interval& yi = y[i];
+    step.interior = step.interior && is_finite(step.image[i]) && yi.lower() < step.image[i].lower() &&
+                    step.image[i].upper() < yi.upper();
+    step.excluded = step.excluded || step.image[i].upper() < yi.lower() || yi.upper() < step.image[i].lower();
+  }
+  return step;
+}
+
 // Parameters in order of how fast the curve crosses the piece along them: |v_p| / width_p.
 std::vector<int> parameter_order(const Eigen::VectorXd& v, const Box& piece) {
   std::vector<int> order(piece.size());
@@ -123,7 +172,7 @@ Arc arc_from(const std::shared_ptr<const model::CompiledSystem>& f, const Box& b
     return a;
   }
   const SquareSystem s(f, all_but(n, parameter), box);
-  return arc_of(f, s, krawczyk_step(s, s.restrict(box), preconditioner), box, parameter, preconditioner);
+  return arc_of(f, s, parametric_krawczyk(f, box, parameter, preconditioner), box, parameter, preconditioner);
 }
 
 bool arc_excluded(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box) {
@@ -131,9 +180,8 @@ bool arc_excluded(const std::shared_ptr<const model::CompiledSystem>& f, const B
   if (n < 2 || f->rows() != n - 1 || f->cols() != n || !finite(box)) return false;
   for (int p = 0; p < n; ++p) {
     const SquareSystem s(f, all_but(n, p), box);
-    const Box y = s.restrict(box);
-    const auto c = inverse_of(midpoint(s.jacobian(y)));
-    if (c && krawczyk_step(s, y, *c).excluded) return true;
+    const auto c = inverse_of(midpoint(s.jacobian(s.restrict(box))));
+    if (c && parametric_krawczyk(f, box, p, *c).excluded) return true;
   }
   return false;
 }
@@ -182,7 +230,7 @@ Arc certify_arc(const std::shared_ptr<const model::CompiledSystem>& f, const Box
     for (int round = 0; round < options.inflation_steps; ++round) {
       const Box trial = widen_within(yb, options.inflation, domain_y);
       if (max_width(trial) > limit) break;
-      const NewtonStep step = krawczyk_step(over_t, trial, c);
+      const NewtonStep step = parametric_krawczyk(f, over_t.embed(trial), p, c);
       if (step.interior) {
         Arc a = arc_of(f, over_t, step, over_t.embed(trial), p, c);
         if (contains(a.box, piece)) return a;

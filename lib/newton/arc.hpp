@@ -1,7 +1,8 @@
 #pragma once
 // Arc certificates: the zero set of n-1 equations in n variables over a box, proved to be
-// exactly one smooth arc. With t the side `parameter` of B = [t] x Y and C a float matrix,
-// the parametric Krawczyk image K([t], Y) = y - C F([t], y) + (I - C F_y([t], Y)) (Y - y)
+// exactly one smooth arc. With t the side `parameter` of B = [t] x Y, (t^, y) its midpoint
+// and C a float matrix, the parametric Krawczyk image
+//   K = y - C F(t^, y) - C F_t(B) ([t] - t^) + (I - C F_y(B)) (Y - y)
 // contains K(t, Y) for every single t in [t]. Strictly inside Y, it proves for each t exactly
 // one root y(t) in Y, and every F_y over B regular: the zero set in B is the graph of a smooth
 // y(t) over the whole of [t], entering through the face t = lo and leaving through t = hi,
