@@ -7,6 +7,7 @@
 #include "report/json.hpp"
 #include "report/text.hpp"
 #include "solve/checkpoint.hpp"
+#include "solve/output_file.hpp"
 #include "solve/solve_case.hpp"
 #include "verify/certify_case.hpp"
 #include "verify/check.hpp"
@@ -98,13 +99,8 @@ struct CheckCommand {
 
 // Output problems are bad input, found before the work rather than after it.
 void check_writable(const std::string& path, const std::string& flag) {
-  if (path.empty()) return;
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw std::invalid_argument(flag + " " + path + ": is a folder");
-  const bool existed = std::filesystem::exists(path, ec);
-  if (!std::ofstream(path, std::ios::app))
-    throw std::invalid_argument(flag + " " + path + ": cannot write there (" + std::strerror(errno) + ")");
-  if (!existed) std::filesystem::remove(path, ec);
+  if (const std::string why = solve::output_problem(path); !why.empty())
+    throw std::invalid_argument(flag + " " + path + ": " + why);
 }
 
 // FNV-1a of the case file's bytes: a checkpoint is for this exact text.
@@ -196,23 +192,25 @@ using Verifier = std::function<std::optional<verify::VerifyReport>(bool verifyin
 int report_and_verify(const SolveCommand& cmd, const formulate::LoadedCase& c, const solve::CaseResult& r,
                       const std::function<nlohmann::json()>& extra, const Verifier& verifier) {
   const solve::RunOptions& o = cmd.options;
-  report::print_summary(stdout, c, o, r);
-  std::fflush(stdout);  // before verification's progress lines on stderr
+  // `--json -` puts the JSON on standard output, alone: the summary goes to stderr.
+  std::FILE* text = cmd.json_out == "-" ? stderr : stdout;
+  report::print_summary(text, c, o, r);
+  std::fflush(text);  // before verification's progress lines on stderr
   nlohmann::json j = report::result_json(c.name, c.file, *c.formulation, o, r);
   j.update(extra());
   // mpirun answers an interrupt with SIGTERM to every rank and SIGKILL a second later: the
   // search's result is on disk before verification starts, and replaced once it is verified.
-  if (distributed_run() && interrupts.load() && !cmd.json_out.empty())
-    solve::write_atomically(cmd.json_out, j.dump(1) + '\n');
+  if (distributed_run() && interrupts.load() && !cmd.json_out.empty() && cmd.json_out != "-")
+    solve::write_output(cmd.json_out, j.dump(1) + '\n');
   if (!cmd.no_verify) {
     if (const auto v = verifier(interrupts.load() < 2, verify_options(cmd))) {
-      report::print_verification(stdout, c, *v);
+      report::print_verification(text, c, *v);
       report::add_verification(j, *c.formulation, *v);
       j.update(extra());
     }
   }
-  if (!cmd.json_out.empty()) solve::write_atomically(cmd.json_out, j.dump(1) + '\n');
-  std::fflush(stdout);
+  if (!cmd.json_out.empty()) solve::write_output(cmd.json_out, j.dump(1) + '\n');
+  std::fflush(text);
   return interrupts.load() ? 128 + last_signal : 0;
 }
 
@@ -224,6 +222,8 @@ int run_solve(SolveCommand& cmd) {
     throw std::invalid_argument("checkpoints (--checkpoint, resume) and --record-tree are for runs of one process, not under mpirun");
   if (speaks()) {
     check_writable(cmd.json_out, "--json");
+    if (cmd.checkpoint == "-")
+      throw std::invalid_argument("--checkpoint -: a checkpoint is rewritten during the run, so it needs a file");
     check_writable(cmd.checkpoint, "--checkpoint");
     check_writable(cmd.record_tree, "--record-tree");
   }
@@ -282,7 +282,7 @@ int run_solve(SolveCommand& cmd) {
       csv += std::to_string(e.subproblem) + ',' + std::to_string(e.candidate) + ',' + e.path + ',' + e.outcome + ',' +
              seconds + '\n';
     }
-    solve::write_atomically(cmd.record_tree, csv);
+    solve::write_output(cmd.record_tree, csv);
   }
   return report_and_verify(
       cmd, c, r, [] { return nlohmann::json::object(); },
@@ -367,7 +367,7 @@ void add_run_options(CLI::App& cmd, SolveCommand& s) {
       ->check(number(0, false));
   cmd.add_option("--max-boxes", o.params.max_boxes, "processed boxes (0 = none)")->check(number(0, false));
   cmd.add_option("--threads", o.threads, "threads: sub-problems in parallel, and the boxes of each search")->check(CLI::Range(1, 256));
-  cmd.add_option("--json", s.json_out, "write the result as JSON");
+  cmd.add_option("--json", s.json_out, "write the result as JSON ('-': standard output, the summary then on stderr)");
   cmd.add_option("--checkpoint", s.checkpoint, "save the run's state to this file, to go on with `linkbox resume`");
   cmd.add_option("--checkpoint-every", o.checkpoint_every, "seconds between checkpoints (default 60)")
       ->check(number(0, true));

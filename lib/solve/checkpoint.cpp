@@ -10,7 +10,6 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
-#include <unistd.h>
 
 namespace linkbox::solve {
 
@@ -230,22 +229,6 @@ std::string checkpoint_text(const std::string& header, const std::vector<std::st
   std::string t = "{\"linkbox_checkpoint\":" + std::to_string(kFormat) + ",\"header\":" + header + ",\"subproblems\":[";
   for (size_t i = 0; i < subproblems.size(); ++i) t += (i ? ",\n" : "\n") + subproblems[i];
   return t + "]}\n";
-}
-
-void write_atomically(const std::string& path, const std::string& text) {
-  const std::string temp = path + ".tmp";
-  std::FILE* f = std::fopen(temp.c_str(), "wb");
-  if (!f) throw std::runtime_error("cannot write " + temp + ": " + std::strerror(errno));
-  // Flushed to the disk before the rename: after a power cut the old or the new file is whole.
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0 && fsync(fileno(f)) == 0;
-  const int err = errno;
-  std::fclose(f);
-  if (!ok) {
-    std::remove(temp.c_str());
-    throw std::runtime_error("cannot write " + temp + ": " + std::strerror(err));
-  }
-  if (std::rename(temp.c_str(), path.c_str()) != 0)
-    throw std::runtime_error("cannot rename " + temp + " to " + path + ": " + std::strerror(errno));
 }
 
 Checkpoint read_checkpoint(const std::string& path) {

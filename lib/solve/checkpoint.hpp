@@ -2,7 +2,7 @@
 // A run's state on disk, so that a stopped, interrupted or crashed run resumes where it was
 // and ends with the boxes an unbroken run gives. Per sub-problem: not started, searching (each
 // raced candidate's search state and the race's position), or finished (its result).
-// Written atomically: a temporary file, then a rename.
+// Written with solve/output_file.hpp: atomically where the file is a regular one.
 #include "prune/counters.hpp"
 #include "solve/branch_and_prune.hpp"
 #include "solve/result.hpp"
@@ -45,10 +45,6 @@ std::string checkpoint_text(const std::string& header, const std::vector<std::st
 // The reverse of to_json_text (distributed/ sends sub-problem states between processes as such
 // text). Throws std::invalid_argument.
 SubCheckpoint sub_checkpoint_from_text(const std::string& text);
-
-// Writes `text` to `path` through a temporary file beside it and a rename, so a crash
-// mid-write leaves the previous file whole. Throws std::runtime_error.
-void write_atomically(const std::string& path, const std::string& text);
 
 // Throws std::invalid_argument naming the file for anything that is not a linkbox checkpoint.
 Checkpoint read_checkpoint(const std::string& path);

@@ -2,6 +2,7 @@
 
 #include "interval/rigorous.hpp"
 #include "solve/checkpoint.hpp"
+#include "solve/output_file.hpp"
 #include "solve/share.hpp"
 
 #include <condition_variable>
@@ -75,7 +76,7 @@ class Checkpointer {
     std::vector<std::string> texts;
     for (auto& s : slots_) texts.push_back(s.text);
     try {
-      write_atomically(path_, checkpoint_text(header_, texts));
+      write_output(path_, checkpoint_text(header_, texts));
     } catch (const std::runtime_error& e) {
       if (last) throw;
       std::fprintf(stderr, "linkbox: checkpoint not written (the run goes on): %s\n", e.what());
