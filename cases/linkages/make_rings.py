@@ -65,7 +65,7 @@ def main():
     w("#   ring1 theta = (%s)" % ", ".join("%r" % e["theta"] for e in ring1))
     w("#   ring2 theta = (%s)" % ", ".join("%r" % e["theta"] for e in ring2))
     w("#   turn[A@ring2] = %r" % turn)
-    w("# EXPECTED: the planted configuration is a certified root (tests/test_linkage.cpp certifies")
+    w("# EXPECTED: the planted configuration is a certified root (tests/unit/formulate/test_linkage.cpp certifies")
     w("# it from a box around it). A full search is slow in the vector model: --prune lp")
     w("# --sigma 0.1 --rho 0.95 had processed about 250 boxes after 8 minutes, unfinished.")
     w('kind = "linkage"')

@@ -3,7 +3,7 @@
 
 Records every LP relaxation (LINKBOX_LP_RECORD, lib/prune/lp/lp_record.hpp) of complete
 `linkbox solve --prune lp --lp safe` searches on the bundled cases, then re-solves each recorded
-min/max exactly (the hidden test "LP oracle on a record file" of tests/test_lp_oracle.cpp:
+min/max exactly (the hidden test "LP oracle on a record file" of tests/unit/prune/test_lp_oracle.cpp:
 ExactLp, i.e. CLP's basis checked and repaired in rationals, with CGAL's QP solver
 independently on a sample and on every infeasibility claim) and checks that
 
@@ -60,7 +60,7 @@ def run_case(build, key, every, cgal_every, cgal_cap, tmp):
                LINKBOX_LP_ORACLE_CGAL_CAP=str(cgal_cap))
     t0 = time.process_time()
     started = time.time()
-    out = subprocess.run([os.path.join(build, "linkbox_tests"), "LP oracle on a record file"], env=env,
+    out = subprocess.run([os.path.join(build, "linkbox_unit_tests"), "LP oracle on a record file"], env=env,
                          capture_output=True, text=True)
     m = re.search(r"^LP oracle: (\{.*\})$", out.stdout, re.M)
     if not m:

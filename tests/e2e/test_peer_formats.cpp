@@ -12,7 +12,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-#include "cli_run.hpp"
+#include "tests/cli_run.hpp"
 #include "input/case_file.hpp"
 #include "input/peer_case.hpp"
 #include "input/to_toml.hpp"

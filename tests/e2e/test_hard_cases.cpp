@@ -222,7 +222,7 @@ TEST_CASE("hard: isolated ill-conditioned wrist roots are not reported as curves
   CHECK(s.v.curves == 0);
 }
 
-TEST_CASE("hard: the rigid 6R with 0.0175 twists encloses its 16 configurations", "[hard][linkage]") {
+TEST_CASE("hard: the rigid 6R with 0.0175 twists encloses its 16 configurations", "[hard][linkage][slow]") {
   // cases/linkages/6r-rigid.toml; one configuration is quoted there to 5 decimals.
   Run s = run_case("cases/linkages/6r-rigid.toml", "hc4,lp", 1e-3);
   check_honest(s);
@@ -232,7 +232,7 @@ TEST_CASE("hard: the rigid 6R with 0.0175 twists encloses its 16 configurations"
   CHECK(s.v.certified_roots == 16);  // a general 6R with 16 real configurations
 }
 
-TEST_CASE("hard: a 6R loop with links from 1e-3 to 1e3 encloses its known configuration", "[hard][linkage]") {
+TEST_CASE("hard: a 6R loop with links from 1e-3 to 1e3 encloses its known configuration", "[hard][linkage][slow]") {
   Run s = run_case("cases/hard/linkage-scales.toml", "hc4,lp", 1e-3);
   check_honest(s);
   CHECK(s.r.complete);

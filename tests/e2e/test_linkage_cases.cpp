@@ -61,7 +61,7 @@ std::string path(const std::string& p) { return std::string(LINKBOX_SOURCE_DIR) 
 
 }  // namespace
 
-TEST_CASE("rigid 6R: 16 distinct poses, each a loop closure, certified and exact", "[linkage][cases]") {
+TEST_CASE("rigid 6R: 16 distinct poses, each a loop closure, certified and exact", "[linkage][cases][slow]") {
   formulate::LoadedCase c = formulate::load_case(path("cases/linkages/6r-rigid.toml"));
   solve::RunOptions o;
   o.progress = false;

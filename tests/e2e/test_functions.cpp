@@ -3,7 +3,7 @@
 // or its hand-lifted twin gives; what cannot be lifted soundly is an InputError naming the
 // line; unbounded domains are rejected with a suggested bound.
 #include "formulate/load.hpp"
-#include "solved_case.hpp"
+#include "tests/solved_case.hpp"
 #include "input/expression.hpp"
 #include "input/input_error.hpp"
 #include "model/lifting.hpp"

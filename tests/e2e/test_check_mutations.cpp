@@ -23,7 +23,7 @@
 //                          root, the count lowered
 #include "formulate/load.hpp"
 #include "verify/check.hpp"
-#include "cli_run.hpp"
+#include "tests/cli_run.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

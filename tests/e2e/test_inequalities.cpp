@@ -3,7 +3,7 @@
 // provably holds, excludes (with a re-checkable proof) roots that violate one, and reports a
 // root on an inequality's boundary as such. Joint limits of linkages are inequalities too.
 #include "formulate/load.hpp"
-#include "solved_case.hpp"
+#include "tests/solved_case.hpp"
 #include "formulate/to_lph.hpp"
 #include "input/expression.hpp"
 #include "input/input_error.hpp"

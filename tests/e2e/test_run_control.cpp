@@ -4,7 +4,7 @@
 #include "formulate/to_lph.hpp"
 #include "prune/lp_relaxation.hpp"
 #include "solve/branch_and_prune.hpp"
-#include "cli_run.hpp"
+#include "tests/cli_run.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -175,7 +175,7 @@ TEST_CASE("each subcommand's --help shows examples of itself", "[run_control][cl
 }
 
 TEST_CASE("a run stopped by a limit and resumed from its checkpoint ends with the boxes of an unbroken run",
-          "[run_control][cli]") {
+          "[run_control][cli][slow]") {
   struct Case {
     const char* path;
     const char* stop;

@@ -84,7 +84,7 @@ Spread spread(const Box& a, const Box& b) {
 
 }  // namespace
 
-TEST_CASE("json: each solution's residual bounds |f| at its midpoint, and tightly", "[json]") {
+TEST_CASE("json: each solution's residual bounds |f| at its midpoint, and tightly", "[json][slow]") {
   for (const char* path : {"cases/spherical/wrist.toml", "cases/hard/gimbal-lock.toml"}) {
     INFO(path);
     const Written w = solve_and_write(path, 1e-3);

@@ -34,7 +34,7 @@ std::vector<Box> certified_roots(const formulate::LoadedCase& c, const std::vect
 
 }  // namespace
 
-TEST_CASE("strategies agree on the certified roots of the bundled cases", "[strategies]") {
+TEST_CASE("strategies agree on the certified roots of the bundled cases", "[strategies][slow]") {
   const std::vector<std::pair<std::string, std::vector<std::vector<std::string>>>> runs = {
       // "auto" first: it must find every root that a fixed strategy certifies, and no other.
       {"cases/spherical/wrist.toml", {{"auto"}, {"trapezoid"}, {"trapezoid", "newton"}, {"hc4", "newton"}, {"lp"}, {"hc4", "lp"}}},

@@ -1,7 +1,7 @@
 // Where results go (solve/output_file.hpp): "-" is standard output and alone there, a link is
 // followed and stays a link, a FIFO is written in place and stays a FIFO, and what cannot be
 // written is bad input found before the work.
-#include "cli_run.hpp"
+#include "tests/cli_run.hpp"
 #include "solve/output_file.hpp"
 
 #include <catch2/catch.hpp>
