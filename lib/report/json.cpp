@@ -1,5 +1,7 @@
 #include "report/json.hpp"
 
+#include "input/case_hash.hpp"
+#include "report/version.hpp"
 #include "solve/strategy.hpp"
 #include "verify/curve_map_json.hpp"
 
@@ -32,8 +34,11 @@ json result_json(const std::string& case_name, const std::string& case_file,
                  const solve::CaseResult& result) {
   const auto& p = options.params;
   json j;
+  j["format"] = kResultFormat;
+  j["linkbox"] = linkbox_version();
   j["case"] = case_name;
   j["case_file"] = case_file;
+  j["case_sha256"] = input::case_sha256(case_file);
   j["kind"] = formulation.kind();
   j["variables"] = formulation.output_names();
   j["variables_unit"] = formulation.outputs_are_angles() ? "radians" : "";
@@ -170,6 +175,15 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
     j["verification"]["inequalities"] = r.inequalities;
     j["verification"]["infeasible"] = r.infeasible;
   }
+  json roots = json::array();  // one per distinct certified root, in the output variables
+  for (size_t k = 0; k < r.clusters.size(); ++k) {
+    const auto& c = r.clusters[k];
+    if (c.status != verify::ClusterStatus::certified || c.duplicate_of >= 0) continue;
+    json mid = json::array();
+    for (auto& x : c.root) mid.push_back(median(x));
+    roots.push_back({{"cluster", k}, {"midpoint", mid}, {"box", box_json(c.root)}});
+  }
+  j["roots"] = roots;
   json clusters = json::array();
   for (auto& c : r.clusters) {
     json cj = {{"status", verify::to_string(c.status)}, {"boxes", c.boxes.size()}, {"hull", box_json(c.hull)},
