@@ -68,7 +68,10 @@ def run_name(case, flags):
 
 def strip(obj):
     if isinstance(obj, dict):
-        return {k: strip(v) for k, v in obj.items() if k not in TIMING_KEYS}
+        out = {k: strip(v) for k, v in obj.items() if k not in TIMING_KEYS}
+        if isinstance(out.get("case_file"), str):  # the same case from another checkout
+            out["case_file"] = "cases/" + out["case_file"].split("cases/", 1)[-1]
+        return out
     if isinstance(obj, list):
         return [strip(v) for v in obj]
     return obj
