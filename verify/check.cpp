@@ -1,11 +1,10 @@
 #include "verify/check.hpp"
 
 #include "newton/certify.hpp"
-#include "newton/interval_newton.hpp"
 #include "verify/check_map.hpp"
+#include "verify/check_proofs.hpp"
 #include "verify/cluster.hpp"
 
-#include <Eigen/LU>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -44,56 +43,6 @@ newton::Certificate certificate_from(const json& j) {
     for (size_t k = 0; k < cols; ++k) c.preconditioner(r, k) = m[r][k].get<double>();
   c.fixed_variable = j.value("fixed_variable", -1);
   return c;
-}
-
-// Box inclusion that fails on a size mismatch (contains() of box.hpp reads `inner` by
-// `outer`'s size): every box here comes from the file.
-bool encloses(const Box& outer, const Box& inner) { return outer.size() == inner.size() && contains(outer, inner); }
-
-// The Newton image of a certificate's box under its preconditioner, computed as
-// newton::recheck computes it (a curve crossing: the variable fixed_variable held at its
-// degenerate side). Empty when the test does not hold: the image is not strictly inside the
-// box, or the sizes do not fit the equations.
-std::optional<Box> proved_image(const std::vector<model::Polynomial>& f, const newton::Certificate& c) {
-  const int n = static_cast<int>(c.box.size()), p = c.fixed_variable;
-  if (n == 0 || p >= n || (p >= 0 && !(c.box[p].lower() == c.box[p].upper()))) return std::nullopt;
-  std::vector<int> unknowns;
-  for (int i = 0; i < n; ++i)
-    if (i != p) unknowns.push_back(i);
-  try {
-    const newton::SquareSystem s(f, unknowns, c.box);
-    const newton::NewtonStep step = newton::newton_step(c.method, s, s.restrict(c.box), c.preconditioner);
-    if (!step.interior) return std::nullopt;
-    return s.embed(step.image);
-  } catch (const std::invalid_argument&) {
-    return std::nullopt;
-  }
-}
-
-// unique_in_hull re-proved as newton::certify_root proves it: no root in hull(start, box)
-// other than the certificate's. Either the box covers the start, or the Newton test with the
-// certificate's C holds on the union itself (when certify_root certified its start whole and
-// then tightened), or ||I - C F'|| < 1 over the union (F injective there) with that C or, as
-// certify_root tries next, the inverse of the union's midpoint Jacobian (float, only chosen:
-// any C makes either test a proof).
-bool unique_over(const formulate::NaturalSystem& sys, const Box& start, const newton::Certificate& c) {
-  if (encloses(c.box, start)) return true;
-  if (c.box.size() != start.size() || start.size() != sys.unknowns.size()) return false;
-  try {
-    const newton::SquareSystem s = sys.compiled ? newton::SquareSystem::all_unknown(sys.compiled)
-                                                : newton::SquareSystem::all_unknown(sys.equations, start.size());
-    const Box y = hull(start, c.box);
-    if (newton::newton_step(c.method, s, y, c.preconditioner).interior) return true;
-    if (newton::at_most_one_root(s, y, c.preconditioner)) return true;
-    const Eigen::MatrixXd jm = newton::midpoint(s.jacobian(y));
-    if (jm.size() == 0 || !jm.allFinite()) return false;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm);
-    if (!(lu.rcond() >= newton::NewtonOptions{}.singular_rcond)) return false;
-    const Eigen::MatrixXd cy = lu.inverse();
-    return cy.allFinite() && newton::at_most_one_root(s, y, cy);
-  } catch (const std::invalid_argument&) {
-    return false;
-  }
 }
 
 // A box carried between a chart's natural unknowns and the outputs (`map` does it); empty
@@ -149,206 +98,267 @@ bool covers(const Box& hull, const Box& b, bool angles) {
   }
   return true;
 }
-}  // namespace
 
-CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) {
-  CheckOutcome out;
-  const size_t outputs = f.output_names().size();
-  const bool angles = f.outputs_are_angles();
-  // A result for other variables is not this case's (the names are all a result states).
-  if (j.contains("variables") && j.at("variables") != f.output_names())
-    out.failures.push_back("the result's variables are not the case's");
-  // Charts are masks of half-turn shifts of the angle outputs; other formulations have one.
-  const auto chart_exists = [&](std::uint64_t chart) {
-    return angles ? outputs >= 64 || chart >> outputs == 0 : chart == 0;
-  };
-  // Solution boxes by (sub-problem, index within it), to check that hulls cover members.
-  std::map<std::pair<size_t, size_t>, Box> solutions;
-  std::map<size_t, size_t> seen;
-  for (auto& s : j.at("solutions")) {
-    const size_t sub = s.at("subproblem");
-    solutions[{sub, seen[sub]++}] = box_from(s.at("box"));
+// One cluster of the result as its checks read it.
+struct Entry {
+  size_t index;
+  const json& c;
+  std::string where;  // "cluster i", how its failures begin
+  std::uint64_t chart;
+  Box hull;
+};
+
+// check_certificates' steps, in the order they run, and what the clusters establish for the
+// checks of the whole result (owners of the solution boxes, duplicates, proved maps, counts).
+class Checker {
+ public:
+  Checker(const json& j, const formulate::Formulation& f)
+      : j_(j), f_(f), outputs_(f.output_names().size()), angles_(f.outputs_are_angles()), periodic_(outputs_, angles_) {}
+
+  CheckOutcome run() {
+    // A result for other variables is not this case's (the names are all a result states).
+    if (j_.contains("variables") && j_.at("variables") != f_.output_names())
+      out_.failures.push_back("the result's variables are not the case's");
+    index_solutions();
+    clusters_ = &j_.at("clusters");
+    for (size_t i = 0; i < clusters_->size(); ++i) check_cluster(i);
+    check_every_box_clustered();
+    check_duplicates();
+    check_exact_headline();
+    check_maps_apart();
+    check_map_counts();
+    if (certified_ != j_.at("certified_roots").get<int>())
+      out_.failures.push_back("certified_roots says " + std::to_string(j_.at("certified_roots").get<int>()) + " but " +
+                              std::to_string(certified_) + " distinct certified clusters are listed");
+    return out_;
   }
-  // Every solution box must be a member of exactly one cluster: a box left out of every
-  // cluster (or a cluster left out) could hold a root the count never sees.
-  std::map<std::pair<size_t, size_t>, size_t> owner;
-  std::vector<size_t> duplicates;  // certified clusters marked duplicate_of another
-  std::vector<size_t> proved_maps;  // curve clusters whose map re-proves as proved
-  std::vector<CurveMap> proved_map_data;
-  int certified = 0, closed_curves = 0, open_arcs = 0;
-  const std::vector<bool> periodic(outputs, angles);
-  const auto& clusters = j.at("clusters");
-  for (size_t i = 0; i < clusters.size(); ++i) {
-    const json& c = clusters[i];
+
+ private:
+  // Charts are masks of half-turn shifts of the angle outputs; other formulations have one.
+  bool chart_exists(std::uint64_t chart) const { return angles_ ? outputs_ >= 64 || chart >> outputs_ == 0 : chart == 0; }
+
+  // Solution boxes by (sub-problem, index within it), to check that hulls cover members.
+  void index_solutions() {
+    std::map<size_t, size_t> seen;
+    for (auto& s : j_.at("solutions")) {
+      const size_t sub = s.at("subproblem");
+      solutions_[{sub, seen[sub]++}] = box_from(s.at("box"));
+    }
+  }
+
+  void check_cluster(size_t i) {
+    const json& c = (*clusters_)[i];
     const std::string where = "cluster " + std::to_string(i);
     const std::string status = c.at("status");
     const auto chart = c.at("chart").get<std::uint64_t>();
-    const Box hull = box_from(c.at("hull"));
-    for (auto& m : c.at("members")) {
-      const std::pair<size_t, size_t> key{m.at(0).get<size_t>(), m.at(1).get<size_t>()};
-      auto it = solutions.find(key);
-      if (it == solutions.end() || !covers(hull, it->second, angles))
-        out.failures.push_back(where + ": its hull does not cover its member solution boxes");
-      else if (auto [at, fresh] = owner.emplace(key, i); !fresh)
-        out.failures.push_back(where + ": lists a solution box that cluster " + std::to_string(at->second) +
-                               " lists too");
+    const Entry k{i, c, where, chart, box_from(c.at("hull"))};
+    check_members(k);
+    if (k.hull.size() != outputs_ || !chart_exists(chart)) {
+      out_.failures.push_back(where + ": its hull or chart does not fit the case's " + std::to_string(outputs_) +
+                              " variables");
+      return;
     }
-    if (hull.size() != outputs || !chart_exists(chart)) {
-      out.failures.push_back(where + ": its hull or chart does not fit the case's " + std::to_string(outputs) +
-                             " variables");
-      continue;
-    }
-    const auto& sys = f.natural(chart);
+    const auto& sys = f_.natural(chart);
     if (status == "certified") {
-      ++out.checked;
-      const json& cj = c.at("certificate");
-      const newton::Certificate cert = certificate_from(cj);
-      const std::optional<Box> image = proved_image(sys.equations, cert);
-      if (!image) {
-        out.failures.push_back(where + ": the Newton test does not hold on the stored box and preconditioner");
-        continue;
-      }
-      // The stored image is the result's tightest enclosure of the root: it must hold the
-      // image the box and preconditioner give (which holds the root).
-      if (!encloses(box_from(cj.at("image")), *image))
-        out.failures.push_back(where + ": the stored Newton image does not contain the one its box and preconditioner give");
-      // The reported root must enclose what the certified box maps to.
-      const auto root = carried([&] { return f.natural_to_output(chart, cert.box); });
-      if (!root || !encloses(box_from(c.at("root")), *root))
-        out.failures.push_back(where + ": the reported root box does not enclose the certified box");
-      // A certified root must satisfy every inequality on its certified box.
-      for (auto& q : sys.inequalities)
-        if (model::side_of(q, cert.box) != model::Side::inside)
-          out.failures.push_back(where + ": the certified root is not proved to satisfy \"" + q.name + "\"");
-      if (!sys.domain.empty() && cj.value("root_in_domain", false) && !encloses(sys.domain, *image))
-        out.failures.push_back(where + ": root claimed in the domain but its image is not");
-      // "No other root in the cluster" is what makes a count exact: re-proved, not read.
-      if (cj.value("unique_in_hull", false)) {
-        const auto start = carried([&] { return f.output_to_natural(chart, hull); });
-        if (!start || !unique_over(sys, *start, cert))
-          out.failures.push_back(where + ": no other root in its hull is claimed but not proved");
-      }
-      if (!c.contains("duplicate_of")) ++certified;
-      else duplicates.push_back(i);
+      check_certified(k, sys);
     } else if (status == "empty") {
-      ++out.checked;
-      const json& cj = c.at("certificate");
-      newton::Certificate cert = certificate_from(cj);
-      std::vector<model::Polynomial> eqs;
-      bool holds = cert.box.size() == sys.unknowns.size() && equations_named(c, "subsystem", sys.equations, eqs);
-      if (holds && c.contains("excluding_equation")) {
-        // Proved by evaluation: that equation's range over the box misses 0.
-        const int k = c.at("excluding_equation");
-        holds = k >= 0 && k < static_cast<int>(sys.equations.size()) && !zero_in(sys.equations[k].eval(cert.box));
-      } else if (holds) {
-        holds = newton::recheck_exclusion(eqs, cert.box, cert.preconditioner, cert.method);
-      }
-      if (!holds)
-        out.failures.push_back(where + ": the proof that this cluster holds no root does not hold");
-      else if (const auto start = carried([&] { return f.output_to_natural(chart, hull); });
-               !start || !encloses(cert.box, *start))
-        out.failures.push_back(where + ": the box proved empty does not cover the cluster");
+      check_empty(k, sys);
     } else if (status == "infeasible") {
-      // No root where the inequalities hold: one fails on the certified box of the cluster's
-      // only root, or on a box that covers the cluster.
-      ++out.checked;
-      const newton::Certificate cert = certificate_from(c.at("certificate"));
-      bool holds = cert.box.size() == sys.unknowns.size() &&
-                   std::any_of(sys.inequalities.begin(), sys.inequalities.end(),
-                               [&](auto& q) { return model::side_of(q, cert.box) == model::Side::outside; });
-      const auto start = carried([&] { return f.output_to_natural(chart, hull); });
-      if (c.at("certificate").at("status") == "certified")
-        holds = holds && c.at("certificate").value("unique_in_hull", false) && newton::recheck(sys.equations, cert) &&
-                start && unique_over(sys, *start, cert);
-      else
-        holds = holds && start && encloses(cert.box, *start);
-      if (!holds) out.failures.push_back(where + ": the proof that this cluster holds no root satisfying the inequalities does not hold");
+      check_infeasible(k, sys);
     } else if (status == "unverified" && c.contains("subsystem") && c.at("certificate").at("status") == "certified") {
-      // An overdetermined system's square subsystem: its unique root is what the reason
-      // speaks of, and the other equations contain 0 on its box.
-      ++out.checked;
-      std::vector<model::Polynomial> eqs;
-      const newton::Certificate cert = certificate_from(c.at("certificate"));
-      if (!equations_named(c, "subsystem", sys.equations, eqs) || !newton::recheck(eqs, cert)) {
-        out.failures.push_back(where + ": the certificate of its square subsystem does not hold");
-        continue;
-      }
-      for (size_t k = 0; k < sys.equations.size(); ++k)
-        if (!zero_in(sys.equations[k].eval(cert.box))) {
-          out.failures.push_back(where + ": natural equation " + std::to_string(k) + " misses 0 on the subsystem's box");
-          break;
-        }
+      check_subsystem(k, sys);
     } else if (status == "curve") {
-      if (c.contains("map")) {
-        std::vector<Box> boxes;
-        for (auto& m : c.at("members")) {
-          auto it = solutions.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
-          // Unwrapped towards the first member, as verification unwrapped them.
-          if (it != solutions.end()) boxes.push_back(boxes.empty() ? it->second : unwrapped(it->second, boxes[0], angles));
-        }
-        MapCheck mc = boxes.size() == c.at("members").size() ? check_map(c.at("map"), f, boxes, chart_exists)
-                                                              : MapCheck{{"members missing"}, false, 0, 0, 0, {}};
-        out.checked += mc.arcs;
-        for (auto& why : mc.failures) out.failures.push_back(where + ": its map: " + why);
-        if (mc.proved) {
-          proved_map_data.push_back(std::move(mc.map));  // as re-proved, never as written
-          proved_maps.push_back(i);
-          closed_curves += mc.closed, open_arcs += mc.open;
-        }
-      }
-      for (auto& x : c.at("crossings")) {
-        if (x.at("status") != "certified") continue;
-        ++out.checked;
-        // Each crossing in its own chart: a curve around a whole turn fits no single one.
-        const std::uint64_t crossing_chart = x.value("chart", chart);
-        if (!chart_exists(crossing_chart)) {
-          out.failures.push_back(where + ": a curve crossing names a chart the case does not have");
-          continue;
-        }
-        const auto& full = f.natural(crossing_chart).equations;
-        std::vector<model::Polynomial> eqs, dropped;
-        std::vector<bool> kept(full.size(), true);
-        bool indices_ok = true;
-        for (auto& d : x.at("dropped_equations")) {
-          const int k = d.get<int>();
-          indices_ok = indices_ok && k >= 0 && k < static_cast<int>(kept.size());
-          if (indices_ok) kept[k] = false;
-        }
-        for (size_t k = 0; k < kept.size(); ++k) (kept[k] ? eqs : dropped).push_back(full[k]);
-        const newton::Certificate cert = certificate_from(x);
-        const std::optional<Box> image = indices_ok ? proved_image(eqs, cert) : std::nullopt;
-        if (!image || cert.fixed_variable < 0) {
-          out.failures.push_back(where + ": a curve-crossing certificate does not hold");
-          continue;
-        }
-        if (!encloses(box_from(x.at("image")), *image))
-          out.failures.push_back(where + ": a curve crossing's stored Newton image does not contain the one its box and preconditioner give");
-        if (std::any_of(dropped.begin(), dropped.end(), [&](auto& p) { return !zero_in(p.eval(cert.box)); }))
-          out.failures.push_back(where + ": a dropped equation does not vanish on a crossing box");
-        // The crossing must be in the member box it is listed for.
-        const size_t member = x.at("member").get<size_t>();
-        if (member >= c.at("members").size()) {
-          out.failures.push_back(where + ": a curve crossing names a member the cluster does not have");
-          continue;
-        }
-        const auto& m = c.at("members")[member];
-        auto it = solutions.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
-        const auto crossing = carried([&] { return f.natural_to_output(crossing_chart, cert.box); });
-        if (it == solutions.end() || !crossing || !boxes_touch(*crossing, it->second, periodic))
-          out.failures.push_back(where + ": a curve crossing lies outside its member box");
-      }
+      if (c.contains("map")) check_curve_map(k);
+      for (auto& x : c.at("crossings"))
+        if (x.at("status") == "certified") check_crossing(k, x);
     }
   }
-  for (auto& [key, i] : solutions)
-    if (!owner.count(key)) {
-      out.failures.push_back("solution box " + std::to_string(key.second) + " of sub-problem " + std::to_string(key.first) +
-                             " is in no cluster: a root in it would not be counted");
-      break;
+
+  // Every solution box must be a member of exactly one cluster: a box left out of every
+  // cluster (or a cluster left out) could hold a root the count never sees.
+  void check_members(const Entry& k) {
+    for (auto& m : k.c.at("members")) {
+      const std::pair<size_t, size_t> key{m.at(0).get<size_t>(), m.at(1).get<size_t>()};
+      auto it = solutions_.find(key);
+      if (it == solutions_.end() || !covers(k.hull, it->second, angles_))
+        out_.failures.push_back(k.where + ": its hull does not cover its member solution boxes");
+      else if (auto [at, fresh] = owner_.emplace(key, k.index); !fresh)
+        out_.failures.push_back(k.where + ": lists a solution box that cluster " + std::to_string(at->second) +
+                                " lists too");
     }
+  }
+
+  void check_certified(const Entry& k, const formulate::NaturalSystem& sys) {
+    ++out_.checked;
+    const json& cj = k.c.at("certificate");
+    const newton::Certificate cert = certificate_from(cj);
+    const std::optional<Box> image = proved_image(sys.equations, cert);
+    if (!image) {
+      out_.failures.push_back(k.where + ": the Newton test does not hold on the stored box and preconditioner");
+      return;
+    }
+    // The stored image is the result's tightest enclosure of the root: it must hold the
+    // image the box and preconditioner give (which holds the root).
+    if (!encloses(box_from(cj.at("image")), *image))
+      out_.failures.push_back(k.where + ": the stored Newton image does not contain the one its box and preconditioner give");
+    // The reported root must enclose what the certified box maps to.
+    const auto root = carried([&] { return f_.natural_to_output(k.chart, cert.box); });
+    if (!root || !encloses(box_from(k.c.at("root")), *root))
+      out_.failures.push_back(k.where + ": the reported root box does not enclose the certified box");
+    // A certified root must satisfy every inequality on its certified box.
+    for (auto& q : sys.inequalities)
+      if (model::side_of(q, cert.box) != model::Side::inside)
+        out_.failures.push_back(k.where + ": the certified root is not proved to satisfy \"" + q.name + "\"");
+    if (!sys.domain.empty() && cj.value("root_in_domain", false) && !encloses(sys.domain, *image))
+      out_.failures.push_back(k.where + ": root claimed in the domain but its image is not");
+    // "No other root in the cluster" is what makes a count exact: re-proved, not read.
+    if (cj.value("unique_in_hull", false)) {
+      const auto start = carried([&] { return f_.output_to_natural(k.chart, k.hull); });
+      if (!start || !unique_over(sys, *start, cert))
+        out_.failures.push_back(k.where + ": no other root in its hull is claimed but not proved");
+    }
+    if (!k.c.contains("duplicate_of")) ++certified_;
+    else duplicates_.push_back(k.index);
+  }
+
+  void check_empty(const Entry& k, const formulate::NaturalSystem& sys) {
+    ++out_.checked;
+    const json& c = k.c;
+    const json& cj = c.at("certificate");
+    newton::Certificate cert = certificate_from(cj);
+    std::vector<model::Polynomial> eqs;
+    bool holds = cert.box.size() == sys.unknowns.size() && equations_named(c, "subsystem", sys.equations, eqs);
+    if (holds && c.contains("excluding_equation")) {
+      // Proved by evaluation: that equation's range over the box misses 0.
+      const int e = c.at("excluding_equation");
+      holds = e >= 0 && e < static_cast<int>(sys.equations.size()) && !zero_in(sys.equations[e].eval(cert.box));
+    } else if (holds) {
+      holds = newton::recheck_exclusion(eqs, cert.box, cert.preconditioner, cert.method);
+    }
+    if (!holds)
+      out_.failures.push_back(k.where + ": the proof that this cluster holds no root does not hold");
+    else if (const auto start = carried([&] { return f_.output_to_natural(k.chart, k.hull); });
+             !start || !encloses(cert.box, *start))
+      out_.failures.push_back(k.where + ": the box proved empty does not cover the cluster");
+  }
+
+  // No root where the inequalities hold: one fails on the certified box of the cluster's
+  // only root, or on a box that covers the cluster.
+  void check_infeasible(const Entry& k, const formulate::NaturalSystem& sys) {
+    ++out_.checked;
+    const json& c = k.c;
+    const newton::Certificate cert = certificate_from(c.at("certificate"));
+    bool holds = cert.box.size() == sys.unknowns.size() &&
+                 std::any_of(sys.inequalities.begin(), sys.inequalities.end(),
+                             [&](auto& q) { return model::side_of(q, cert.box) == model::Side::outside; });
+    const auto start = carried([&] { return f_.output_to_natural(k.chart, k.hull); });
+    if (c.at("certificate").at("status") == "certified")
+      holds = holds && c.at("certificate").value("unique_in_hull", false) && newton::recheck(sys.equations, cert) &&
+              start && unique_over(sys, *start, cert);
+    else
+      holds = holds && start && encloses(cert.box, *start);
+    if (!holds)
+      out_.failures.push_back(k.where + ": the proof that this cluster holds no root satisfying the inequalities does not hold");
+  }
+
+  // An overdetermined system's square subsystem: its unique root is what the reason speaks
+  // of, and the other equations contain 0 on its box.
+  void check_subsystem(const Entry& k, const formulate::NaturalSystem& sys) {
+    ++out_.checked;
+    std::vector<model::Polynomial> eqs;
+    const newton::Certificate cert = certificate_from(k.c.at("certificate"));
+    if (!equations_named(k.c, "subsystem", sys.equations, eqs) || !newton::recheck(eqs, cert)) {
+      out_.failures.push_back(k.where + ": the certificate of its square subsystem does not hold");
+      return;
+    }
+    for (size_t e = 0; e < sys.equations.size(); ++e)
+      if (!zero_in(sys.equations[e].eval(cert.box))) {
+        out_.failures.push_back(k.where + ": natural equation " + std::to_string(e) + " misses 0 on the subsystem's box");
+        break;
+      }
+  }
+
+  void check_curve_map(const Entry& k) {
+    std::vector<Box> boxes;
+    for (auto& m : k.c.at("members")) {
+      auto it = solutions_.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
+      // Unwrapped towards the first member, as verification unwrapped them.
+      if (it != solutions_.end()) boxes.push_back(boxes.empty() ? it->second : unwrapped(it->second, boxes[0], angles_));
+    }
+    const auto exists = [&](std::uint64_t chart) { return chart_exists(chart); };
+    MapCheck mc = boxes.size() == k.c.at("members").size() ? check_map(k.c.at("map"), f_, boxes, exists)
+                                                            : MapCheck{{"members missing"}, false, 0, 0, 0, {}};
+    out_.checked += mc.arcs;
+    for (auto& why : mc.failures) out_.failures.push_back(k.where + ": its map: " + why);
+    if (mc.proved) {
+      proved_map_data_.push_back(std::move(mc.map));  // as re-proved, never as written
+      proved_maps_.push_back(k.index);
+      closed_curves_ += mc.closed, open_arcs_ += mc.open;
+    }
+  }
+
+  void check_crossing(const Entry& k, const json& x) {
+    ++out_.checked;
+    // Each crossing in its own chart: a curve around a whole turn fits no single one.
+    const std::uint64_t crossing_chart = x.value("chart", k.chart);
+    if (!chart_exists(crossing_chart)) {
+      out_.failures.push_back(k.where + ": a curve crossing names a chart the case does not have");
+      return;
+    }
+    const auto& full = f_.natural(crossing_chart).equations;
+    std::vector<model::Polynomial> eqs, dropped;
+    std::vector<bool> kept(full.size(), true);
+    bool indices_ok = true;
+    for (auto& d : x.at("dropped_equations")) {
+      const int e = d.get<int>();
+      indices_ok = indices_ok && e >= 0 && e < static_cast<int>(kept.size());
+      if (indices_ok) kept[e] = false;
+    }
+    for (size_t e = 0; e < kept.size(); ++e) (kept[e] ? eqs : dropped).push_back(full[e]);
+    const newton::Certificate cert = certificate_from(x);
+    const std::optional<Box> image = indices_ok ? proved_image(eqs, cert) : std::nullopt;
+    if (!image || cert.fixed_variable < 0) {
+      out_.failures.push_back(k.where + ": a curve-crossing certificate does not hold");
+      return;
+    }
+    if (!encloses(box_from(x.at("image")), *image))
+      out_.failures.push_back(k.where + ": a curve crossing's stored Newton image does not contain the one its box and preconditioner give");
+    if (std::any_of(dropped.begin(), dropped.end(), [&](auto& p) { return !zero_in(p.eval(cert.box)); }))
+      out_.failures.push_back(k.where + ": a dropped equation does not vanish on a crossing box");
+    // The crossing must be in the member box it is listed for.
+    const size_t member = x.at("member").get<size_t>();
+    if (member >= k.c.at("members").size()) {
+      out_.failures.push_back(k.where + ": a curve crossing names a member the cluster does not have");
+      return;
+    }
+    const auto& m = k.c.at("members")[member];
+    auto it = solutions_.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
+    const auto crossing = carried([&] { return f_.natural_to_output(crossing_chart, cert.box); });
+    if (it == solutions_.end() || !crossing || !boxes_touch(*crossing, it->second, periodic_))
+      out_.failures.push_back(k.where + ": a curve crossing lies outside its member box");
+  }
+
+  void check_every_box_clustered() {
+    for (auto& [key, i] : solutions_)
+      if (!owner_.count(key)) {
+        out_.failures.push_back("solution box " + std::to_string(key.second) + " of sub-problem " +
+                                std::to_string(key.first) + " is in no cluster: a root in it would not be counted");
+        break;
+      }
+  }
+
   // A duplicate is not counted, so the claim that it is one needs a proof: as the search's
   // verification made it, one certificate (re-derived here, deterministically) with no other
   // root in the hull of the first cluster's box and the duplicate's root box.
-  for (size_t i : duplicates) {
+  void check_duplicates() {
+    for (size_t i : duplicates_)
+      if (!duplicate_proved(i))
+        out_.failures.push_back("cluster " + std::to_string(i) +
+                                ": marked the duplicate of another cluster, but one root for both is not proved");
+  }
+
+  bool duplicate_proved(size_t i) const {
+    const json& clusters = *clusters_;
     const json& b = clusters[i];
     const json& d = b.at("duplicate_of");
     const long a = d.is_number_integer() ? d.get<long>() : -1;
@@ -360,9 +370,9 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
       try {
         const newton::Certificate cert = certificate_from(first.at("certificate"));
         const Box root = box_from(first.at("root")), other = box_from(b.at("root"));
-        if (chart_exists(chart) && root.size() == outputs && other.size() == outputs) {
-          const auto& sys = f.natural(chart);
-          const auto mapped = carried([&] { return f.output_to_natural(chart, unwrapped(other, root, angles)); });
+        if (chart_exists(chart) && root.size() == outputs_ && other.size() == outputs_) {
+          const auto& sys = f_.natural(chart);
+          const auto mapped = carried([&] { return f_.output_to_natural(chart, unwrapped(other, root, angles_)); });
           if (mapped && mapped->size() == cert.box.size()) {
             const newton::Certificate both =
                 newton::certify_root(sys.equations, linkbox::hull(cert.box, *mapped), sys.domain);
@@ -372,38 +382,59 @@ CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) 
       } catch (const nlohmann::json::exception&) {  // malformed: nothing proved
       }
     }
-    if (!proved)
-      out.failures.push_back("cluster " + std::to_string(i) +
-                             ": marked the duplicate of another cluster, but one root for both is not proved");
+    return proved;
   }
+
   // "exactly N" needs every cluster settled: each certified one (duplicates too) proved alone
   // in its hull, no curve or unresolved cluster, the search complete.
-  if (j.value("headline", std::string()).rfind("exactly", 0) == 0) {
-    if (!j.value("complete", false)) out.failures.push_back("the headline states an exact count of an incomplete search");
+  void check_exact_headline() {
+    if (j_.value("headline", std::string()).rfind("exactly", 0) != 0) return;
+    if (!j_.value("complete", false)) out_.failures.push_back("the headline states an exact count of an incomplete search");
+    const json& clusters = *clusters_;
     for (size_t i = 0; i < clusters.size(); ++i) {
       const std::string status = clusters[i].at("status");
-      const bool map_proved = std::find(proved_maps.begin(), proved_maps.end(), i) != proved_maps.end();
+      const bool map_proved = std::find(proved_maps_.begin(), proved_maps_.end(), i) != proved_maps_.end();
       const bool settled = status == "empty" || status == "infeasible" || map_proved ||
                            (status == "certified" && clusters[i].at("certificate").value("unique_in_hull", false));
       if (!settled)
-        out.failures.push_back("cluster " + std::to_string(i) + ": the headline states an exact count, but this cluster is " +
-                               (status == "certified" ? "not proved to hold only its root" : status));
+        out_.failures.push_back("cluster " + std::to_string(i) + ": the headline states an exact count, but this cluster is " +
+                                (status == "certified" ? "not proved to hold only its root" : status));
     }
   }
-  for (size_t a = 0; a < proved_map_data.size(); ++a)
-    for (size_t b = a + 1; b < proved_map_data.size(); ++b)
-      if (!maps_apart(f, proved_map_data[a], proved_map_data[b]))
-        out.failures.push_back("clusters " + std::to_string(proved_maps[a]) + " and " + std::to_string(proved_maps[b]) +
-                               ": proved maps whose arcs may meet");
-  if (j.contains("verification") && j.at("verification").contains("map")) {
-    const json& m = j.at("verification").at("map");
-    if (m.value("closed_curves", -1) != closed_curves || m.value("open_arcs", -1) != open_arcs)
-      out.failures.push_back("the map's counts of closed curves and open arcs are not those its proved clusters give");
+
+  void check_maps_apart() {
+    for (size_t a = 0; a < proved_map_data_.size(); ++a)
+      for (size_t b = a + 1; b < proved_map_data_.size(); ++b)
+        if (!maps_apart(f_, proved_map_data_[a], proved_map_data_[b]))
+          out_.failures.push_back("clusters " + std::to_string(proved_maps_[a]) + " and " +
+                                  std::to_string(proved_maps_[b]) + ": proved maps whose arcs may meet");
   }
-  if (certified != j.at("certified_roots").get<int>())
-    out.failures.push_back("certified_roots says " + std::to_string(j.at("certified_roots").get<int>()) + " but " +
-                           std::to_string(certified) + " distinct certified clusters are listed");
-  return out;
-}
+
+  void check_map_counts() {
+    if (j_.contains("verification") && j_.at("verification").contains("map")) {
+      const json& m = j_.at("verification").at("map");
+      if (m.value("closed_curves", -1) != closed_curves_ || m.value("open_arcs", -1) != open_arcs_)
+        out_.failures.push_back("the map's counts of closed curves and open arcs are not those its proved clusters give");
+    }
+  }
+
+  const json& j_;
+  const formulate::Formulation& f_;
+  const size_t outputs_;
+  const bool angles_;
+  const std::vector<bool> periodic_;
+  const json* clusters_ = nullptr;
+  std::map<std::pair<size_t, size_t>, Box> solutions_;
+  std::map<std::pair<size_t, size_t>, size_t> owner_;  // the cluster listing each solution box
+  std::vector<size_t> duplicates_;       // certified clusters marked duplicate_of another
+  std::vector<size_t> proved_maps_;      // curve clusters whose map re-proves as proved
+  std::vector<CurveMap> proved_map_data_;
+  int certified_ = 0, closed_curves_ = 0, open_arcs_ = 0;
+  CheckOutcome out_;
+};
+
+}  // namespace
+
+CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) { return Checker(j, f).run(); }
 
 }  // namespace linkbox::verify

@@ -128,8 +128,12 @@ class LinkageFormulation final : public Formulation {
     bool inverse;
     bool operator==(const ChainFactor&) const = default;
   };
-  void index_case();
+  void index_case();  // joints, normals and outputs (index_joints, index_normals, list_outputs)
+  void index_joints();
+  void index_normals();
+  void list_outputs();
   void ground_frame();
+  class ModelBuilder;  // build_model's steps (linkage_model.cpp)
   void build_model();
   void plan_natural();  // placements_, turn outputs, unknown_of_entry_, or no_natural_
   std::vector<ChainFactor> frame_chain(int loop, int position) const;

@@ -100,7 +100,7 @@ FloatRoot float_newton(const SquareSystem& s, Eigen::VectorXd x, const NewtonOpt
     const double step = dx.lpNorm<Eigen::Infinity>(), size = x.lpNorm<Eigen::Infinity>();
     if (step <= 4 * kEps * size) break;
     // At the rounding noise of F the steps stop shrinking quadratically: further ones only
-    // move x around the root (a third of the time of verifying a curve went there).
+    // move x around the root.
     if (step <= 1e-9 * (1 + size) && step > 0.25 * last_step) break;
     last_step = step;
   }
@@ -111,8 +111,7 @@ FloatRoot float_newton(const SquareSystem& s, Eigen::VectorXd x, const NewtonOpt
 // The absolute terms let a box around an exactly representable root (F(x) = 0) reach a
 // width the test can resolve, and zero components leave zero. They scale with the root's
 // largest coordinate: F(y)'s rounding error, which the image's width must exceed, is relative
-// to the terms of F, not to a zero coordinate (2^-60 of the scale left a coordinate exactly 0
-// ten times narrower than the image of the same box, and inflation never caught up).
+// to the terms of F, not to a zero coordinate (see papers/decisions/model-and-verify.md).
 std::optional<std::pair<Box, NewtonStep>> inflate(const SquareSystem& s, const Eigen::VectorXd& root,
                                                   const Eigen::MatrixXd& c, const NewtonOptions& o,
                                                   Box& last, NewtonStep& last_step) {
@@ -188,6 +187,99 @@ Certificate fail(Certificate c, Reason r) {
   return c;
 }
 
+// A box that passes the Newton test with preconditioner c, and that step (its image).
+struct Passing {
+  Box x;
+  NewtonStep step;
+  Eigen::MatrixXd c;
+};
+
+// 1. The hull itself: may prove it root-free (that failure is returned), or certify it whole
+// (`passing` is set).
+std::optional<Certificate> test_hull(const SquareSystem& s, const Box& hull, const NewtonOptions& o,
+                                     Certificate cert, std::optional<Passing>& passing) {
+  if (auto ch = inverse(midpoint(s.jacobian(hull)), o.singular_rcond)) {
+    NewtonStep hs = newton_step(o.method, s, hull, *ch);
+    if (hs.excluded) {
+      cert.image = hs.image, cert.preconditioner = *ch, cert.point = to_std(centre_of(hull));
+      return fail(cert, Reason::no_root);
+    }
+    if (hs.interior) passing = Passing{hull, hs, *ch};
+  }
+  return std::nullopt;
+}
+
+// 2. Float Newton from the centre (or nudged starts if that fails), then inflation. Returns
+// the failure, or sets `passing` and the certificate's point, box and preconditioner.
+std::optional<Certificate> inflate_float_root(const SquareSystem& s, const Box& hull, const NewtonOptions& o,
+                                              Certificate& cert, std::optional<Passing>& passing) {
+  std::optional<Certificate> first_failure;
+  Eigen::VectorXd root;
+  for (const Eigen::VectorXd& start : starts(hull)) {
+    FloatRoot fr = float_newton(s, start, o);
+    Certificate attempt = cert;
+    attempt.point = to_std(fr.x);
+    attempt.box = point_box(fr.x);
+    Reason r = !fr.finite ? Reason::non_finite
+               : fr.singular ? Reason::singular_jacobian
+               : !near_hull(hull, fr.x, o.hull_margin) ? Reason::outside_hull
+               : Reason::none;
+    if (r == Reason::none) {
+      cert = attempt, root = fr.x;
+      break;
+    }
+    if (!first_failure) first_failure = fail(attempt, r);
+  }
+  if (root.size() == 0) {
+    if (first_failure->reason == Reason::singular_jacobian && holds_singular_matrix(s.jacobian(hull)))
+      first_failure->reason = Reason::singular_in_box;
+    return *first_failure;
+  }
+  auto ci = inverse(s.jacobian_at(root), o.singular_rcond);
+  if (!ci) return fail(cert, holds_singular_matrix(s.jacobian(hull)) ? Reason::singular_in_box : Reason::singular_jacobian);
+  const Eigen::MatrixXd c = *ci;
+  cert.preconditioner = c;
+  NewtonStep step;
+  auto done = inflate(s, root, c, o, cert.box, step);
+  if (!done) {
+    cert.image = step.image;
+    return fail(cert, holds_singular_matrix(s.jacobian(hull)) ? Reason::singular_in_box : Reason::inflation_failed);
+  }
+  passing = Passing{done->first, done->second, c};
+  return std::nullopt;
+}
+
+// 4. Where that root lies: in the hull, and in the domain or within its slack.
+Certificate locate_root(const SquareSystem& s, const Box& hull, const Box& domain, const NewtonOptions& o,
+                        Certificate cert, Passing p, bool unique_in_hull) {
+  const size_t n = static_cast<size_t>(s.size());
+  if (!overlaps(p.step.image, hull)) return fail(cert, Reason::outside_hull);
+  if (domain.empty()) {
+    cert.root_in_domain = true;
+  } else {
+    if (!overlaps(p.step.image, domain)) return fail(cert, Reason::outside_domain);
+    if (!contains(domain, p.x)) {
+      // The part of X inside the domain may pass on its own (root near, not on, the face).
+      Box inner(n);
+      bool meets = true;
+      for (size_t i = 0; i < n; ++i) meets = meets && intersect(p.x[i], domain[i], inner[i]);
+      NewtonStep ns;
+      if (meets && (ns = newton_step(o.method, s, inner, p.c)).interior) {
+        p.x = std::move(inner), p.step = std::move(ns);
+        cert.box = p.x, cert.image = p.step.image, cert.point = to_std(centre_of(p.step.image));
+      }
+    }
+    cert.root_in_domain = contains(domain, p.step.image);
+    cert.on_domain_boundary = !contains(domain, p.x);
+    if (cert.on_domain_boundary && !(o.domain_slack > 0 && contains(widen(domain, o.domain_slack), p.x)))
+      return fail(cert, Reason::outside_domain);
+  }
+  cert.unique_in_hull = unique_in_hull || unique_over(s, hull, p.x, p.c, o);
+  cert.status = Status::certified;
+  cert.reason = Reason::none;
+  return cert;
+}
+
 // The whole pipeline in the unknowns' coordinates.
 Certificate certify_square(const SquareSystem& s, const Box& hull, const Box& domain,
                            const NewtonOptions& o) {
@@ -199,93 +291,24 @@ Certificate certify_square(const SquareSystem& s, const Box& hull, const Box& do
     return fail(cert, Reason::not_square);
   if (!finite_box(hull)) return fail(cert, Reason::non_finite);
 
-  Box x;
-  NewtonStep step;
-  Eigen::MatrixXd c;
-  bool proved = false, unique_in_hull = false;
-
-  // 1. The hull itself: may prove it root-free, or certify it whole.
-  if (auto ch = inverse(midpoint(s.jacobian(hull)), o.singular_rcond)) {
-    NewtonStep hs = newton_step(o.method, s, hull, *ch);
-    if (hs.excluded) {
-      cert.image = hs.image, cert.preconditioner = *ch, cert.point = to_std(centre_of(hull));
-      return fail(cert, Reason::no_root);
-    }
-    if (hs.interior) x = hull, step = hs, c = *ch, proved = unique_in_hull = true;
-  }
-
-  // 2. Float Newton from the centre (or nudged starts if that fails), then inflation.
-  if (!proved) {
-    std::optional<Certificate> first_failure;
-    Eigen::VectorXd root;
-    for (const Eigen::VectorXd& start : starts(hull)) {
-      FloatRoot fr = float_newton(s, start, o);
-      Certificate attempt = cert;
-      attempt.point = to_std(fr.x);
-      attempt.box = point_box(fr.x);
-      Reason r = !fr.finite ? Reason::non_finite
-                 : fr.singular ? Reason::singular_jacobian
-                 : !near_hull(hull, fr.x, o.hull_margin) ? Reason::outside_hull
-                 : Reason::none;
-      if (r == Reason::none) {
-        cert = attempt, root = fr.x;
-        break;
-      }
-      if (!first_failure) first_failure = fail(attempt, r);
-    }
-    if (root.size() == 0) {
-      if (first_failure->reason == Reason::singular_jacobian && holds_singular_matrix(s.jacobian(hull)))
-        first_failure->reason = Reason::singular_in_box;
-      return *first_failure;
-    }
-    auto ci = inverse(s.jacobian_at(root), o.singular_rcond);
-    if (!ci) return fail(cert, holds_singular_matrix(s.jacobian(hull)) ? Reason::singular_in_box : Reason::singular_jacobian);
-    c = *ci;
-    cert.preconditioner = c;
-    auto done = inflate(s, root, c, o, cert.box, step);
-    if (!done) {
-      cert.image = step.image;
-      return fail(cert, holds_singular_matrix(s.jacobian(hull)) ? Reason::singular_in_box : Reason::inflation_failed);
-    }
-    x = done->first, step = done->second;
-  }
+  std::optional<Passing> passing;
+  if (auto no_root = test_hull(s, hull, o, cert, passing)) return *no_root;
+  const bool unique_in_hull = passing.has_value();
+  if (!passing)
+    if (auto failure = inflate_float_root(s, hull, o, cert, passing)) return *failure;
+  Passing& p = *passing;
 
   // 3. Tighten: every X <- K(X) ∩ X still holds the root; keep the last X that passes.
   // The image is often far tighter than what can pass in turn (it sits at the rounding
   // limit), so candidates grow from it by factors of 4 until one passes.
-  for (int t = 0; t < o.tighten_steps && !tighten(s, o, c, x, step); ++t) {
+  for (int t = 0; t < o.tighten_steps && !tighten(s, o, p.c, p.x, p.step); ++t) {
   }
-  cert.box = x;
-  cert.image = step.image;
-  cert.preconditioner = c;
-  cert.point = to_std(centre_of(step.image));
+  cert.box = p.x;
+  cert.image = p.step.image;
+  cert.preconditioner = p.c;
+  cert.point = to_std(centre_of(p.step.image));
 
-  // 4. Where that root lies.
-  if (!overlaps(step.image, hull)) return fail(cert, Reason::outside_hull);
-  if (domain.empty()) {
-    cert.root_in_domain = true;
-  } else {
-    if (!overlaps(step.image, domain)) return fail(cert, Reason::outside_domain);
-    if (!contains(domain, x)) {
-      // The part of X inside the domain may pass on its own (root near, not on, the face).
-      Box inner(n);
-      bool meets = true;
-      for (size_t i = 0; i < n; ++i) meets = meets && intersect(x[i], domain[i], inner[i]);
-      NewtonStep ns;
-      if (meets && (ns = newton_step(o.method, s, inner, c)).interior) {
-        x = std::move(inner), step = std::move(ns);
-        cert.box = x, cert.image = step.image, cert.point = to_std(centre_of(step.image));
-      }
-    }
-    cert.root_in_domain = contains(domain, step.image);
-    cert.on_domain_boundary = !contains(domain, x);
-    if (cert.on_domain_boundary && !(o.domain_slack > 0 && contains(widen(domain, o.domain_slack), x)))
-      return fail(cert, Reason::outside_domain);
-  }
-  cert.unique_in_hull = unique_in_hull || unique_over(s, hull, x, c, o);
-  cert.status = Status::certified;
-  cert.reason = Reason::none;
-  return cert;
+  return locate_root(s, hull, domain, o, std::move(cert), std::move(p), unique_in_hull);
 }
 
 std::optional<SquareSystem> square_system(const std::vector<model::Polynomial>& f, std::vector<int> unknowns,

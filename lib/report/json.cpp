@@ -22,17 +22,95 @@ json box_json(const Box& b) {
 }
 
 namespace {
+
 json stats_json(const solve::Stats& s) {
   return {{"processed", s.processed}, {"empty", s.empty}, {"split", s.split},
           {"solution_boxes", s.solution}, {"certified_in_search", s.certified}, {"certify_calls", s.certify_calls},
           {"shrinks", s.shrinks}, {"seconds", s.seconds}};
 }
+
+json parameters_json(const solve::RunOptions& options, const solve::CaseResult& result) {
+  const auto& p = options.params;
+  return {{"sigma", p.sigma},
+          {"rho", p.rho > 0 || result.rho <= 0 ? p.rho : result.rho},  // auto resolved
+          {"order", p.order == solve::Order::depth_first ? "dfs" : "bfs"},
+          {"prune", solve::strategy_name(options.strategy.contractors)},
+          {"bisect", solve::to_string(options.bisect)},
+          {"lp", prune::lp::to_string(options.strategy.lp)},
+          {"arith", to_string(options.strategy.arith)},
+          {"time_limit", p.time_limit},
+          {"max_boxes", p.max_boxes},
+          {"threads", options.threads},
+          // where the settings came from: "flag", "case file", "checkpoint"; absent: default
+          {"sources", options.setting_source}};
+}
+
+json case_stats_json(const solve::CaseResult& result) {
+  json stats = stats_json(result.total);
+  stats["subproblems"] = result.subproblems.size();
+  stats["seconds"] = result.seconds;
+  stats["cpu_seconds"] = result.cpu_seconds;  // the search's, every thread (verification not included)
+  stats["search_seconds"] = result.total.seconds;  // the winning searches' wall time, summed over sub-problems
+  return stats;
+}
+
+json contractors_json(const solve::CaseResult& result) {
+  json contractors = json::array();
+  for (size_t k = 0; k < result.counters.size(); ++k) {
+    auto& c = result.counters[k];
+    json cj = {{"name", result.contractor_names.at(k)}, {"calls", c.calls}, {"emptied", c.emptied},
+               {"volume_removed", c.volume_removed}, {"seconds", c.seconds},
+               {"lps_solved", c.lps_solved}, {"lp_iterations", c.lp_iterations}};
+    if (c.lps_solved > 0) {
+      // The LP contractor's cost: how many LPs a box takes (over every box processed, those
+      // it did not run on included) and what one costs (the contractor's seconds, its bound
+      // propagation included, per LP).
+      const long boxes = std::max<long>(1, result.total.processed);
+      cj["lps_per_box"] = static_cast<double>(c.lps_solved) / static_cast<double>(boxes);
+      cj["us_per_lp"] = 1e6 * c.seconds / static_cast<double>(c.lps_solved);
+    }
+    if (c.lp_paths.any())  // the exact LP backend only
+      cj["lp_paths"] = {{"basis", c.lp_paths.basis}, {"repaired", c.lp_paths.repaired}, {"farkas", c.lp_paths.farkas},
+                        {"fallback", c.lp_paths.fallback}, {"pivots", c.lp_paths.pivots}};
+    contractors.push_back(cj);
+  }
+  return contractors;
+}
+
+json subproblem_json(const solve::SubResult& s) {
+  json sj = stats_json(s.stats);
+  sj["index"] = s.index;
+  sj["label"] = s.label;
+  sj["equations"] = s.equations;
+  sj["variables"] = s.variables;
+  sj["complete"] = s.complete;
+  sj["volume_left"] = s.volume_left;
+  json pending = json::array();  // in the search variables, as `search_box` of a solution
+  for (auto& b : s.pending) pending.push_back(box_json(b));
+  sj["pending"] = pending;
+  return sj;
+}
+
+json solution_json(const formulate::Formulation& formulation, const solve::SubResult& s, size_t k) {
+  const Box& box = s.solutions[k];
+  json sol = {{"subproblem", s.index},
+              {"box", box_json(formulation.to_output(s.index, box))},
+              {"search_box", box_json(box)},
+              {"residual", s.residuals.at(k)},
+              {"certified_in_search", k < s.certified.size() && s.certified[k]}};
+  for (auto& m : formulation.declared_outputs(s.index, box)) {
+    json rows = json::array();
+    for (auto& row : m.rows) rows.push_back(box_json(row));
+    sol[m.name] = rows;  // e.g. "rotation": 3x3 [lo, hi], row-major
+  }
+  return sol;
+}
+
 }  // namespace
 
 json result_json(const std::string& case_name, const std::string& case_file,
                  const formulate::Formulation& formulation, const solve::RunOptions& options,
                  const solve::CaseResult& result) {
-  const auto& p = options.params;
   json j;
   j["format"] = kResultFormat;
   j["linkbox"] = linkbox_version();
@@ -42,18 +120,7 @@ json result_json(const std::string& case_name, const std::string& case_file,
   j["kind"] = formulation.kind();
   j["variables"] = formulation.output_names();
   j["variables_unit"] = formulation.outputs_are_angles() ? "radians" : "";
-  j["parameters"] = {{"sigma", p.sigma},
-                     {"rho", p.rho > 0 || result.rho <= 0 ? p.rho : result.rho},  // auto resolved
-                     {"order", p.order == solve::Order::depth_first ? "dfs" : "bfs"},
-                     {"prune", solve::strategy_name(options.strategy.contractors)},
-                     {"bisect", solve::to_string(options.bisect)},
-                     {"lp", prune::lp::to_string(options.strategy.lp)},
-                     {"arith", to_string(options.strategy.arith)},
-                     {"time_limit", p.time_limit},
-                     {"max_boxes", p.max_boxes},
-                     {"threads", options.threads},
-                     // where the settings came from: "flag", "case file", "checkpoint"; absent: default
-                     {"sources", options.setting_source}};
+  j["parameters"] = parameters_json(options, result);
   // Model size of an L/P/H formulation (iterated-LP paper): primary, dummy, #L, #P, #H.
   if (formulation.subproblem_count() == 1) {
     const auto sub = formulation.subproblem(0);
@@ -75,59 +142,12 @@ json result_json(const std::string& case_name, const std::string& case_file,
   if (!result.complete) j["stop_reason"] = result.stop_reason;
   j["pending_boxes"] = result.pending_boxes;
   j["volume_left"] = result.volume_left;  // unexplored share of the domain, averaged over sub-problems
-  json stats = stats_json(result.total);
-  stats["subproblems"] = result.subproblems.size();
-  stats["seconds"] = result.seconds;
-  stats["cpu_seconds"] = result.cpu_seconds;  // the search's, every thread (verification not included)
-  stats["search_seconds"] = result.total.seconds;  // the winning searches' wall time, summed over sub-problems
-  j["stats"] = stats;
-  json contractors = json::array();
-  for (size_t k = 0; k < result.counters.size(); ++k) {
-    auto& c = result.counters[k];
-    json cj = {{"name", result.contractor_names.at(k)}, {"calls", c.calls}, {"emptied", c.emptied},
-               {"volume_removed", c.volume_removed}, {"seconds", c.seconds},
-               {"lps_solved", c.lps_solved}, {"lp_iterations", c.lp_iterations}};
-    if (c.lps_solved > 0) {
-      // Issue 9's two measures of the LP contractor's cost: how many LPs a box takes (over
-      // every box processed, those it did not run on included) and what one costs (the
-      // contractor's seconds, its bound propagation included, per LP).
-      const long boxes = std::max<long>(1, result.total.processed);
-      cj["lps_per_box"] = static_cast<double>(c.lps_solved) / static_cast<double>(boxes);
-      cj["us_per_lp"] = 1e6 * c.seconds / static_cast<double>(c.lps_solved);
-    }
-    if (c.lp_paths.any())  // the exact LP backend only
-      cj["lp_paths"] = {{"basis", c.lp_paths.basis}, {"repaired", c.lp_paths.repaired}, {"farkas", c.lp_paths.farkas},
-                        {"fallback", c.lp_paths.fallback}, {"pivots", c.lp_paths.pivots}};
-    contractors.push_back(cj);
-  }
-  j["contractors"] = contractors;
+  j["stats"] = case_stats_json(result);
+  j["contractors"] = contractors_json(result);
   json subs = json::array(), sols = json::array();
   for (auto& s : result.subproblems) {
-    json sj = stats_json(s.stats);
-    sj["index"] = s.index;
-    sj["label"] = s.label;
-    sj["equations"] = s.equations;
-    sj["variables"] = s.variables;
-    sj["complete"] = s.complete;
-    sj["volume_left"] = s.volume_left;
-    json pending = json::array();  // in the search variables, as `search_box` of a solution
-    for (auto& b : s.pending) pending.push_back(box_json(b));
-    sj["pending"] = pending;
-    subs.push_back(sj);
-    for (size_t k = 0; k < s.solutions.size(); ++k) {
-      const Box& box = s.solutions[k];
-      json sol = {{"subproblem", s.index},
-                  {"box", box_json(formulation.to_output(s.index, box))},
-                  {"search_box", box_json(box)},
-                  {"residual", s.residuals.at(k)},
-                  {"certified_in_search", k < s.certified.size() && s.certified[k]}};
-      for (auto& m : formulation.declared_outputs(s.index, box)) {
-        json rows = json::array();
-        for (auto& row : m.rows) rows.push_back(box_json(row));
-        sol[m.name] = rows;  // e.g. "rotation": 3x3 [lo, hi], row-major
-      }
-      sols.push_back(sol);
-    }
+    subs.push_back(subproblem_json(s));
+    for (size_t k = 0; k < s.solutions.size(); ++k) sols.push_back(solution_json(formulation, s, k));
   }
   j["subproblem_stats"] = subs;
   j["solutions"] = sols;
@@ -160,6 +180,51 @@ json certificate_json(const newton::Certificate& c) {
   return j;
 }
 
+json cluster_json(const formulate::Formulation& f, const verify::ClusterReport& c) {
+  json cj = {{"status", verify::to_string(c.status)}, {"boxes", c.boxes.size()}, {"hull", box_json(c.hull)},
+             {"chart", c.chart}, {"max_residual", c.max_residual}};
+  if (!c.reason.empty()) cj["reason"] = c.reason;
+  json members = json::array();
+  for (auto [s, k] : c.boxes) members.push_back({s, k});
+  cj["members"] = members;
+  cj["natural_unknowns"] = f.natural(c.chart).unknowns;
+  if (c.status == verify::ClusterStatus::certified) {
+    cj["root"] = box_json(c.root);
+    for (auto& m : c.outputs) {
+      json rows = json::array();
+      for (auto& row : m.rows) rows.push_back(box_json(row));
+      cj[m.name] = rows;
+    }
+    if (c.duplicate_of >= 0) cj["duplicate_of"] = c.duplicate_of;
+    cj["distances"] = c.distances;
+    cj["max_distance"] = c.max_distance;
+  }
+  // Inequalities (natural system): the one violated or sat on, and those left undecided.
+  if (c.inequality >= 0) cj["inequality"] = c.inequality;
+  if (!c.straddled.empty()) cj["straddled_inequalities"] = c.straddled;
+  if (c.status == verify::ClusterStatus::infeasible && !c.root.empty()) cj["root"] = box_json(c.root);
+  if (c.status != verify::ClusterStatus::curve) {
+    cj["certificate"] = certificate_json(c.certificate);
+    if (!c.subsystem.empty()) cj["subsystem"] = c.subsystem;
+    if (c.excluding_equation >= 0) cj["excluding_equation"] = c.excluding_equation;
+  }
+  if (c.status == verify::ClusterStatus::curve) {
+    json xs = json::array();
+    for (auto& x : c.crossings) {
+      json xj = certificate_json(x.certificate);
+      xj["member"] = x.box;
+      xj["chart"] = x.chart;
+      xj["dropped_equations"] = x.dropped_equations;
+      xs.push_back(xj);
+    }
+    cj["crossings"] = xs;
+    cj["crossings_certified"] = c.crossings_certified;
+    cj["crossings_fraction"] = c.crossings.empty() ? 0.0 : double(c.crossings_certified) / c.crossings.size();
+    if (c.map) cj["map"] = verify::map_json(*c.map);
+  }
+  return cj;
+}
+
 }  // namespace
 
 void add_verification(json& j, const formulate::Formulation& f, const verify::VerifyReport& r) {
@@ -185,50 +250,7 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
   }
   j["roots"] = roots;
   json clusters = json::array();
-  for (auto& c : r.clusters) {
-    json cj = {{"status", verify::to_string(c.status)}, {"boxes", c.boxes.size()}, {"hull", box_json(c.hull)},
-               {"chart", c.chart}, {"max_residual", c.max_residual}};
-    if (!c.reason.empty()) cj["reason"] = c.reason;
-    json members = json::array();
-    for (auto [s, k] : c.boxes) members.push_back({s, k});
-    cj["members"] = members;
-    cj["natural_unknowns"] = f.natural(c.chart).unknowns;
-    if (c.status == verify::ClusterStatus::certified) {
-      cj["root"] = box_json(c.root);
-      for (auto& m : c.outputs) {
-        json rows = json::array();
-        for (auto& row : m.rows) rows.push_back(box_json(row));
-        cj[m.name] = rows;
-      }
-      if (c.duplicate_of >= 0) cj["duplicate_of"] = c.duplicate_of;
-      cj["distances"] = c.distances;
-      cj["max_distance"] = c.max_distance;
-    }
-    // Inequalities (natural system): the one violated or sat on, and those left undecided.
-    if (c.inequality >= 0) cj["inequality"] = c.inequality;
-    if (!c.straddled.empty()) cj["straddled_inequalities"] = c.straddled;
-    if (c.status == verify::ClusterStatus::infeasible && !c.root.empty()) cj["root"] = box_json(c.root);
-    if (c.status != verify::ClusterStatus::curve) {
-      cj["certificate"] = certificate_json(c.certificate);
-      if (!c.subsystem.empty()) cj["subsystem"] = c.subsystem;
-      if (c.excluding_equation >= 0) cj["excluding_equation"] = c.excluding_equation;
-    }
-    if (c.status == verify::ClusterStatus::curve) {
-      json xs = json::array();
-      for (auto& x : c.crossings) {
-        json xj = certificate_json(x.certificate);
-        xj["member"] = x.box;
-        xj["chart"] = x.chart;
-        xj["dropped_equations"] = x.dropped_equations;
-        xs.push_back(xj);
-      }
-      cj["crossings"] = xs;
-      cj["crossings_certified"] = c.crossings_certified;
-      cj["crossings_fraction"] = c.crossings.empty() ? 0.0 : double(c.crossings_certified) / c.crossings.size();
-      if (c.map) cj["map"] = verify::map_json(*c.map);
-    }
-    clusters.push_back(cj);
-  }
+  for (auto& c : r.clusters) clusters.push_back(cluster_json(f, c));
   j["clusters"] = clusters;
 }
 

@@ -1,0 +1,299 @@
+// Builds the lifted system of a raw one from its angles (lifter_angles.cpp): the unknowns,
+// the equations and inequalities, the record that maps back (Lifting) and its notes.
+#include "model/lifter.hpp"
+
+#include "interval/rigorous.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace linkbox::model {
+
+namespace detail {
+
+namespace {
+
+// How far a circle unknown's bound of +-1 is moved out (see add_angle_unknowns).
+constexpr double kCircleSlack = 0x1p-20;
+
+}  // namespace
+
+bool same_bounds(const Interval& a, const Interval& b) { return a.lower() == b.lower() && a.upper() == b.upper(); }
+Polynomial one() { return Polynomial::constant(Interval(1.0)); }
+
+std::string format(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+bool within_one(const Interval& x, const Interval& shift, const Interval& period, long& k) {
+  const Interval q = (x - shift) / period;
+  if (!is_finite(q)) return false;
+  const double lo = std::floor(q.lower());
+  if (std::fabs(lo) > 1e15 || q.upper() > lo + 1) return false;
+  k = static_cast<long>(lo);
+  return true;
+}
+
+bool within_tan_branch(const Interval& x, long& k) {
+  const Interval pi = rigorous::pi();
+  const Interval q = (x + pi / Interval(2.0)) / pi;
+  if (!is_finite(q)) return false;
+  const double lo = std::floor(q.lower());
+  if (std::fabs(lo) > 1e15 || !(q.lower() > lo) || !(q.upper() < lo + 1)) return false;
+  k = static_cast<long>(lo);
+  return true;
+}
+
+System Lifter::run() {
+  find_angles();
+  for (size_t j = 0; j < angles_.size(); ++j) choose_unit(j);
+  expand();
+  for (size_t j = 0; j < angles_.size(); ++j) choose_chart(j);
+  build();
+  return std::move(out_);
+}
+
+Box Lifter::raw_domain() const {
+  Box b;
+  for (auto& v : raw_.variables) b.push_back(v.domain);
+  return b;
+}
+
+std::string Lifter::pole_message(int k, const Interval& range) const {
+  return text(k) + ": its argument ranges over [" + format(range.lower()) + ", " + format(range.upper()) +
+         "] on the domain, which meets a pole of tan (or cannot be shown not to); narrow the domain so that it "
+         "stays within one branch (pi/2 + k pi excluded)";
+}
+
+void Lifter::build() {
+  auto lifting = std::make_shared<Lifting>();
+  lifting_ = lifting.get();
+  lifting->declared = raw_.variables;
+  lifting->applications = raw_.applications;
+  symbol_.assign(2 * angles_.size(), Polynomial());
+  image_.assign(n_ + raw_.applications.size(), Polynomial());
+  done_.assign(raw_.applications.size(), false);
+  add_declared_unknowns();
+  for (auto& use : angles_) lifting->angles.push_back(use.angle);
+  add_application_unknowns();
+  add_typed_constraints();
+  add_angle_constraints();
+  for (auto& d : definitions_) {
+    out_.equations.push_back(std::move(d.first));
+    out_.equation_names.push_back(std::move(d.second));
+  }
+  out_.lifting = std::move(lifting);
+}
+
+// Unknowns: each declared variable in place (an angle as its cos/sin or tan), then one per
+// tan or sqrt that needs an equation (add_application_unknowns), in the order they were written.
+void Lifter::add_declared_unknowns() {
+  for (int v = 0; v < n_; ++v) {
+    const int j = angle_of_[v];
+    if (j < 0) {
+      image_[v] = Polynomial::variable(static_cast<int>(out_.variables.size()));
+      add_variable(name(v), raw_.variables[v].domain, {Lifting::Source::Kind::declared, v});
+      continue;
+    }
+    add_angle_unknowns(j);
+  }
+}
+
+void Lifter::add_angle_unknowns(int j) {
+  Lifting::Angle& a = angles_[j].angle;
+  const auto next = [&] { return static_cast<int>(out_.variables.size()); };
+  if (a.chart == Chart::tan_only) {
+    a.tan = next();
+    const int k = angles_[j].applications[0];
+    image_[n_ + k] = Polynomial::variable(a.tan);
+    done_[k] = true;
+    add_variable(text(k), rigorous::tan(raw_.applications[k].argument.eval(raw_domain())),
+                 {Lifting::Source::Kind::tan_angle, j});
+    return;
+  }
+  // On the circle a bound of +-1 binds nothing (c^2 + s^2 = 1 does), so it is moved out:
+  // a root at cos = 1 inside the domain (t = 0 in [-1, 1]) is not on the box's boundary.
+  // Without the circle equation (cos or sin alone) the bound is what keeps c real.
+  const bool circle = a.chart == Chart::circle;
+  auto range = [&](Interval r) {
+    if (!circle) return r;
+    if (a.full_turn) r = Interval(-1.0, 1.0);
+    return Interval(r.lower() <= -1 ? -1 - kCircleSlack : r.lower(), r.upper() >= 1 ? 1 + kCircleSlack : r.upper());
+  };
+  if (a.chart != Chart::sin_only) {
+    a.c = next();
+    symbol_[2 * j] = Polynomial::variable(a.c);
+    add_variable(angle_name(a, "cos"), range(rigorous::cos(a.domain)), {Lifting::Source::Kind::cos, j});
+  }
+  if (a.chart != Chart::cos_only) {
+    a.s = next();
+    symbol_[2 * j + 1] = Polynomial::variable(a.s);
+    add_variable(angle_name(a, "sin"), range(rigorous::sin(a.domain)), {Lifting::Source::Kind::sin, j});
+  }
+}
+
+// Applications in order: sin/cos are their expansions; tan and sqrt get an unknown each.
+void Lifter::add_application_unknowns() {
+  for (int k = 0; k < static_cast<int>(raw_.applications.size()); ++k) {
+    const Application& a = raw_.applications[k];
+    if (done_[k]) continue;  // a tan-only angle's unknown (add_angle_unknowns)
+    if (a.function == Function::sin || a.function == Function::cos) {
+      image_[n_ + k] = substitute(a.function == Function::cos ? expansions_[k].re : expansions_[k].im, symbol_);
+      continue;
+    }
+    const int index = static_cast<int>(out_.variables.size());
+    const Polynomial x = Polynomial::variable(index);
+    image_[n_ + k] = x;
+    if (a.function == Function::tan) add_tan_unknown(k, x);
+    else add_sqrt_unknown(k, x);
+  }
+}
+
+void Lifter::add_tan_unknown(int k, const Polynomial& x) {
+  const Application& a = raw_.applications[k];
+  long branch;
+  const Interval range = a.argument.eval(raw_domain());
+  if (!within_tan_branch(range, branch)) fail_application(k, pole_message(k, range));
+  add_variable(a.text, rigorous::tan(range), {Lifting::Source::Kind::application, k});
+  definitions_.emplace_back(x * substitute(expansions_[k].re, symbol_) - substitute(expansions_[k].im, symbol_),
+                            a.text + " * cos = sin");
+  lifting_->notes.push_back(a.text + " -> an unknown t with t cos(...) = sin(...) (no pole in the domain)");
+}
+
+// The domain of r: [0, sqrt of the argument's upper bound over the domain].
+void Lifter::add_sqrt_unknown(int k, const Polynomial& x) {
+  const Application& a = raw_.applications[k];
+  Interval range;
+  try {
+    range = argument_range(k);
+  } catch (const std::domain_error&) {
+    fail_application(k, a.text + ": its argument is negative on the whole domain, so the square root is never "
+                                 "real");
+  }
+  if (!is_finite(range)) fail_application(k, a.text + ": its argument is not bounded on the domain");
+  add_variable(a.text, Interval(0.0, range.upper()), {Lifting::Source::Kind::application, k});
+  definitions_.emplace_back(x.pow(2) - substitute(a.argument, image_), a.text + "^2 = its argument");
+  lifting_->notes.push_back(a.text + " -> an unknown r >= 0 with r^2 = its argument");
+}
+
+// Equations and inequalities as typed (what defines the new unknowns comes last, in build).
+void Lifter::add_typed_constraints() {
+  for (size_t i = 0; i < raw_.equations.size(); ++i) {
+    Polynomial p = substitute(raw_.equations[i], image_);
+    if (p.is_constant())
+      throw LiftError("equation " + std::to_string(i + 1) +
+                          " is constant once sin and cos are expanded (an identity such as sin(t)^2 + cos(t)^2 = 1, "
+                          "or a contradiction)",
+                      -1, -1, static_cast<int>(i));
+    out_.equations.push_back(std::move(p));
+    out_.equation_names.push_back(i < raw_.equation_names.size() ? raw_.equation_names[i] : "");
+  }
+  for (size_t i = 0; i < raw_.inequalities.size(); ++i) {
+    const Inequality& c = raw_.inequalities[i];
+    Inequality lifted = c;
+    lifted.g = substitute(c.g, image_);
+    if (lifted.g.is_constant())
+      throw LiftError("inequality \"" + c.name + "\" is constant once sin and cos are expanded", -1, -1, -1,
+                      static_cast<int>(i));
+    out_.inequalities.push_back(std::move(lifted));
+  }
+}
+
+// Per angle a note of how it is lifted (the notes start with these); a circle's equation and
+// arc (add_circle).
+void Lifter::add_angle_constraints() {
+  std::vector<std::string> angle_notes;
+  for (auto& a : lifting_->angles) {
+    const std::string& t = name(a.variable);
+    if (a.chart == Chart::tan_only) {
+      angle_notes.push_back(t + " -> " + text(angles_[angle_of_[a.variable]].applications[0]) +
+                            " (its only use; one branch of tan on the domain)");
+      continue;
+    }
+    if (a.chart != Chart::circle) {
+      const bool cos_only = a.chart == Chart::cos_only;
+      angle_notes.push_back(t + " -> " + angle_name(a, cos_only ? "cos" : "sin") + " (no " +
+                            (cos_only ? "sin" : "cos") + " needed: one to one on the domain)");
+      continue;
+    }
+    angle_notes.push_back(add_circle(a));
+  }
+  lifting_->notes.insert(lifting_->notes.begin(), angle_notes.begin(), angle_notes.end());
+}
+
+// c^2 + s^2 = 1 and, for a domain of less than a turn beyond one quadrant, its arc as an
+// inequality. Returns the angle's note.
+std::string Lifter::add_circle(const Lifting::Angle& a) {
+  const std::string& t = name(a.variable);
+  const Interval pi = rigorous::pi();
+  const Polynomial c = Polynomial::variable(a.c), s = Polynomial::variable(a.s);
+  out_.equations.push_back(c.pow(2) + s.pow(2) - one());
+  out_.equation_names.push_back(angle_name(a, "cos") + "^2 + " + angle_name(a, "sin") + "^2 = 1");
+  std::string note = t + " -> " + angle_name(a, "cos") + ", " + angle_name(a, "sin") + " on the unit circle";
+  long quadrant;
+  if (!a.full_turn && !within_one(a.domain, Interval(0.0), pi / Interval(2.0), quadrant)) {
+    // The arc of the domain: cos(u - m) >= cos(h), i.e. cos(h) - c cos(m) - s sin(m) <= 0.
+    const Interval lo(a.domain.lower()), hi(a.domain.upper());
+    const Interval m = (lo + hi) / Interval(2.0), h = (hi - lo) / Interval(2.0);
+    Inequality arc;
+    arc.g = Polynomial::constant(rigorous::cos(h)) - c * rigorous::cos(m) - s * rigorous::sin(m);
+    arc.name = "domain of " + t;
+    out_.inequalities.push_back(std::move(arc));
+    note += " (its domain, less than a turn, as the inequality \"domain of " + t + "\")";
+  } else if (a.full_turn) {
+    note += " (a full turn)";
+  }
+  return note;
+}
+
+void Lifter::add_variable(const std::string& name, const Interval& domain, Lifting::Source source) {
+  out_.variables.push_back({name, domain});
+  lifting_->sources.push_back(source);
+}
+
+std::string Lifter::angle_name(const Lifting::Angle& a, const char* f) const {
+  const std::string& t = name(a.variable);
+  return std::string(f) + "(" + (same_bounds(a.unit, Interval(1.0)) ? t : format(median(a.unit)) + "*" + t) + ")";
+}
+
+// The range of application k's argument over the domain, through the forward map.
+Interval Lifter::argument_range(int k) const {
+  Box values = raw_domain();
+  values.resize(n_ + k + 1, Interval(0.0));
+  for (int i = 0; i < k; ++i) {
+    const Application& a = raw_.applications[i];
+    const Interval x = a.argument.eval(values);
+    switch (a.function) {
+      case Function::sin: values[n_ + i] = rigorous::sin(x); break;
+      case Function::cos: values[n_ + i] = rigorous::cos(x); break;
+      case Function::tan: values[n_ + i] = rigorous::tan(x); break;
+      case Function::sqrt: {
+        Interval nonnegative;
+        if (!intersect(x, Interval(0.0, kInf), nonnegative)) throw std::domain_error("sqrt");
+        values[n_ + i] = rigorous::sqrt(nonnegative);
+        break;
+      }
+    }
+  }
+  const Interval range = raw_.applications[k].argument.eval(values);
+  if (range.upper() < 0) throw std::domain_error("sqrt");
+  return range;
+}
+
+}  // namespace detail
+
+System lift(const RawSystem& raw) {
+  if (raw.applications.empty()) {
+    System s;
+    s.variables = raw.variables;
+    s.equations = raw.equations;
+    s.equation_names = raw.equation_names;
+    s.inequalities = raw.inequalities;
+    return s;
+  }
+  return detail::Lifter(raw).run();
+}
+
+}  // namespace linkbox::model
