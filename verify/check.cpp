@@ -1,6 +1,7 @@
 #include "verify/check.hpp"
 
 #include "newton/certify.hpp"
+#include "verify/check_claims.hpp"
 #include "verify/check_map.hpp"
 #include "verify/check_proofs.hpp"
 #include "verify/cluster.hpp"
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 #include <stdexcept>
 
 namespace linkbox::verify {
@@ -130,6 +132,7 @@ class Checker {
     if (certified_ != j_.at("certified_roots").get<int>())
       out_.failures.push_back("certified_roots says " + std::to_string(j_.at("certified_roots").get<int>()) + " but " +
                               std::to_string(certified_) + " distinct certified clusters are listed");
+    check_claims(j_, f_, reproved_clusters(), out_.failures);
     return out_;
   }
 
@@ -169,8 +172,15 @@ class Checker {
       check_subsystem(k, sys);
     } else if (status == "curve") {
       if (c.contains("map")) check_curve_map(k);
+      std::set<size_t> crossed;
       for (auto& x : c.at("crossings"))
-        if (x.at("status") == "certified") check_crossing(k, x);
+        if (x.at("status") == "certified" && check_crossing(k, x)) crossed.insert(x.at("member").get<size_t>());
+      // What verification calls a curve: a map (proved or not) that re-proves, or certified
+      // crossings in at least half of its boxes.
+      if (!reproved_maps_.count(i) && 2 * crossed.size() < c.at("members").size())
+        out_.failures.push_back(where + ": called a curve, but it has no map and certified crossings cover fewer than half of its boxes");
+    } else if (status != "unverified") {
+      out_.failures.push_back(where + ": unknown status '" + status + "'");
     }
   }
 
@@ -290,6 +300,7 @@ class Checker {
                                                             : MapCheck{{"members missing"}, false, 0, 0, 0, {}};
     out_.checked += mc.arcs;
     for (auto& why : mc.failures) out_.failures.push_back(k.where + ": its map: " + why);
+    if (mc.failures.empty()) reproved_maps_[k.index] = mc.map;
     if (mc.proved) {
       proved_map_data_.push_back(std::move(mc.map));  // as re-proved, never as written
       proved_maps_.push_back(k.index);
@@ -297,13 +308,14 @@ class Checker {
     }
   }
 
-  void check_crossing(const Entry& k, const json& x) {
+  // Whether the crossing holds, in full.
+  bool check_crossing(const Entry& k, const json& x) {
     ++out_.checked;
     // Each crossing in its own chart: a curve around a whole turn fits no single one.
     const std::uint64_t crossing_chart = x.value("chart", k.chart);
     if (!chart_exists(crossing_chart)) {
       out_.failures.push_back(k.where + ": a curve crossing names a chart the case does not have");
-      return;
+      return false;
     }
     const auto& full = f_.natural(crossing_chart).equations;
     std::vector<model::Polynomial> eqs, dropped;
@@ -319,8 +331,9 @@ class Checker {
     const std::optional<Box> image = indices_ok ? proved_image(eqs, cert) : std::nullopt;
     if (!image || cert.fixed_variable < 0) {
       out_.failures.push_back(k.where + ": a curve-crossing certificate does not hold");
-      return;
+      return false;
     }
+    const size_t failed = out_.failures.size();
     if (!encloses(box_from(x.at("image")), *image))
       out_.failures.push_back(k.where + ": a curve crossing's stored Newton image does not contain the one its box and preconditioner give");
     if (std::any_of(dropped.begin(), dropped.end(), [&](auto& p) { return !zero_in(p.eval(cert.box)); }))
@@ -329,13 +342,41 @@ class Checker {
     const size_t member = x.at("member").get<size_t>();
     if (member >= k.c.at("members").size()) {
       out_.failures.push_back(k.where + ": a curve crossing names a member the cluster does not have");
-      return;
+      return false;
     }
     const auto& m = k.c.at("members")[member];
     auto it = solutions_.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
     const auto crossing = carried([&] { return f_.natural_to_output(crossing_chart, cert.box); });
     if (it == solutions_.end() || !crossing || !boxes_touch(*crossing, it->second, periodic_))
       out_.failures.push_back(k.where + ": a curve crossing lies outside its member box");
+    return out_.failures.size() == failed;
+  }
+
+  // The clusters as the checks above leave them: each field the headline and counts need is
+  // either re-proved above (a failure was recorded otherwise) or, like `reason`, descriptive.
+  std::vector<ClusterReport> reproved_clusters() const {
+    std::vector<ClusterReport> out;
+    for (size_t i = 0; i < clusters_->size(); ++i) {
+      const json& c = (*clusters_)[i];
+      ClusterReport r;
+      const std::string status = c.at("status");
+      r.status = status == "certified"    ? ClusterStatus::certified
+                 : status == "curve"      ? ClusterStatus::curve
+                 : status == "empty"      ? ClusterStatus::empty
+                 : status == "infeasible" ? ClusterStatus::infeasible
+                                          : ClusterStatus::unverified;
+      r.reason = c.value("reason", "");
+      r.boxes.resize(c.at("members").size());
+      if (r.status == ClusterStatus::certified) {
+        r.certificate.unique_in_hull = c.at("certificate").value("unique_in_hull", false);
+        r.root = box_from(c.at("root"));
+        const json& d = c.value("duplicate_of", json(-1));
+        r.duplicate_of = d.is_number_integer() ? d.get<int>() : -1;
+      }
+      if (auto it = reproved_maps_.find(i); it != reproved_maps_.end()) r.map = it->second;
+      out.push_back(std::move(r));
+    }
+    return out;
   }
 
   void check_every_box_clustered() {
@@ -429,12 +470,18 @@ class Checker {
   std::vector<size_t> duplicates_;       // certified clusters marked duplicate_of another
   std::vector<size_t> proved_maps_;      // curve clusters whose map re-proves as proved
   std::vector<CurveMap> proved_map_data_;
+  std::map<size_t, CurveMap> reproved_maps_;  // curve clusters whose map re-proves, by index
   int certified_ = 0, closed_curves_ = 0, open_arcs_ = 0;
   CheckOutcome out_;
 };
 
 }  // namespace
 
-CheckOutcome check_certificates(const json& j, const formulate::Formulation& f) { return Checker(j, f).run(); }
+CheckOutcome check_certificates(const json& j, const formulate::Formulation& f, const std::string& case_sha256) {
+  if (!case_sha256.empty() && j.value("case_sha256", std::string()) != case_sha256)
+    return {0, {"not the case that was solved: the case file's SHA-256 is " + case_sha256 + ", the result's " +
+                j.value("case_sha256", std::string("missing"))}};
+  return Checker(j, f).run();
+}
 
 }  // namespace linkbox::verify

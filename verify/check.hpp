@@ -15,6 +15,9 @@ struct CheckOutcome {
   std::vector<std::string> failures;  // empty: every certificate holds
 };
 
-CheckOutcome check_certificates(const nlohmann::json& result, const formulate::Formulation& formulation);
+// `case_sha256`: the digest of the case file's bytes (input/case_hash.hpp); when given, a
+// result whose `case_sha256` differs is "not the case that was solved".
+CheckOutcome check_certificates(const nlohmann::json& result, const formulate::Formulation& formulation,
+                                const std::string& case_sha256 = {});
 
 }  // namespace linkbox::verify

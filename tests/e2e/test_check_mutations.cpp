@@ -22,7 +22,9 @@
 //   false duplicate        a certified cluster marked the duplicate of another (distinct)
 //                          root, the count lowered
 #include "formulate/load.hpp"
+#include "input/case_hash.hpp"
 #include "verify/check.hpp"
+#include "verify/check_claims.hpp"
 #include "tests/cli_run.hpp"
 
 #include <catch2/catch.hpp>
@@ -444,4 +446,80 @@ TEST_CASE("an exact count needs every certified cluster alone in its hull (dupli
   const std::string headline = fresh["headline"];
   if (headline.rfind("exactly", 0) == 0) CHECK(headline.rfind("exactly 4 roots", 0) == 0);
   CHECK(failures(fresh, *f).empty());
+}
+
+// Every top-level field of a result, edited, is either caught or one that check declares it
+// takes on trust (verify::trusted_fields, printed by `linkbox check`).
+namespace {
+
+void edit(json& v) {
+  if (v.is_boolean()) v = !v.get<bool>();
+  else if (v.is_number_integer()) v = v.get<long>() + 1;
+  else if (v.is_number()) v = v.get<double>() * 2 + 1;
+  else if (v.is_string()) v = v.get<std::string>() + " (edited)";
+  else if (v.is_array() && !v.empty()) v.erase(v.size() - 1);
+  else if (v.is_array()) v.push_back(0);
+  else if (v.is_object() && !v.empty()) edit(v.begin().value());
+}
+
+// Caught: a failure listed, or data too malformed to check (the CLI's exit 2).
+bool rejected(const json& m, const formulate::Formulation& f, const std::string& sha = {}) {
+  try {
+    return !verify::check_certificates(m, f, sha).failures.empty();
+  } catch (const json::exception&) {
+    return true;
+  }
+}
+
+bool trusted(const std::string& key) {
+  for (auto& t : verify::trusted_fields())
+    if (key == t.key) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("check catches an edit of every top-level field, or says it takes that field on trust", "[check][mutation]") {
+  for (const char* name : {"cases/spherical/wrist.toml", "cases/curves/fourbar-grashof.toml",
+                           "cases/linkages/6r-rigid-limits.toml", "cases/hard/close-roots-unresolved.toml"}) {
+    const Solved& s = solved(src(name));
+    const std::string sha = input::case_sha256(s.case_file);
+    REQUIRE_FALSE(rejected(s.result, *s.formulation, sha));
+    for (auto& [key, value] : s.result.items()) {
+      std::vector<std::pair<std::string, json>> edits{{key, value}};  // (field named, edited value)
+      edit(edits[0].second);
+      if (value.is_object())  // each claim of an object (e.g. verification) on its own
+        for (auto& [sub, v] : value.items()) {
+          json e = value;
+          edit(e[sub]);
+          edits.emplace_back(key + "." + sub, e);
+        }
+      for (auto& [field, e] : edits) {
+        json m = s.result;
+        m[key] = e;
+        if (m == s.result) continue;
+        INFO(name << ": " << field << " edited, " << key << " = " << e.dump().substr(0, 200));
+        CHECK((rejected(m, *s.formulation, sha) || trusted(key) || trusted(field)));
+      }
+    }
+  }
+}
+
+TEST_CASE("check rejects a status edited to any other", "[check][mutation]") {
+  const Solved& s = solved(src("cases/linkages/cyclohexane.toml"));
+  for (size_t i = 0; i < s.result["clusters"].size(); ++i)
+    for (const char* status : {"certified", "unverified", "curve", "empty", "infeasible"}) {
+      if (s.result["clusters"][i]["status"] == status) continue;
+      json m = s.result;
+      m["clusters"][i]["status"] = status;
+      INFO("cluster " << i << " made " << status);
+      CHECK(rejected(m, *s.formulation));
+    }
+}
+
+TEST_CASE("check against another case's file says it is not the case that was solved", "[check][mutation]") {
+  const Solved& s = solved(src("cases/spherical/wrist.toml"));
+  const auto out = verify::check_certificates(s.result, *s.formulation, input::case_sha256(src("cases/spherical/agile-eye.toml")));
+  REQUIRE(out.failures.size() == 1);
+  CHECK(out.failures[0].find("not the case that was solved") != std::string::npos);
 }
