@@ -92,7 +92,7 @@ struct Slot {
   std::atomic<bool> shares{false};  // `unit`'s search gives or lends boxes
   size_t sub = 0;                   // under m: `unit`'s sub-problem
   bool record = false;              // under m: `unit` searches lent boxes, with records
-  solve::Search* lender = nullptr;  // under m: `unit`'s race lent boxes; records go to it
+  solve::Lender* lender = nullptr;  // under m: `unit`'s race lent boxes; records go to it
   long lease = 0;       // under m: the lender's boxes lent since its last recall carry this
   long unit_lease = 0;  // under m: a record unit: the lease its records answer
   std::thread thread;
@@ -142,17 +142,13 @@ class Process {
       return s.steal.load(std::memory_order_relaxed);
     }
     // The oldest pending box: in depth-first order the shallowest, so the largest subtree.
-    bool give(size_t i, const std::vector<std::string>& strategy, solve::Search& search) override {
+    bool give(size_t i, const std::vector<std::string>& strategy, solve::Lender& search) override {
       Slot& s = *p.slots_[k];
       s.steal.store(false);
-      solve::SearchState st = search.state();
+      auto node = search.give();
       Piece gift{i, strategy, {}, {}, {}};
-      const bool gave = st.pending.size() >= 2;
-      if (gave) {
-        gift.state.pending.push_back(std::move(st.pending.front()));
-        st.pending.erase(st.pending.begin());
-        search.set_state(std::move(st));
-      }
+      const bool gave = node.has_value();
+      if (gave) gift.state.pending.push_back(std::move(*node));
       json head = piece_head("gift", gift);
       head["slot"] = k;
       {
@@ -165,7 +161,7 @@ class Process {
     }
     // A race's leader: the box stays in its list; the records of its subtree come back here
     // (handle "records") and go to `search`.
-    bool lend(size_t i, const std::vector<std::string>& strategy, solve::Search& search) override {
+    bool lend(size_t i, const std::vector<std::string>& strategy, solve::Lender& search) override {
       Slot& s = *p.slots_[k];
       s.steal.store(false);
       const auto node = search.lend();
