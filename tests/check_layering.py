@@ -33,6 +33,31 @@ ALLOWED = {
 
 INCLUDE = re.compile(r'#include "([a-z_]+)/([^"]+)"')
 
+# The search (Algorithm 1, its look-ahead: lib/solve/search*, lookahead*) sees the processes that
+# take its boxes only through solve/lending.hpp: not MPI, not distributed/, not how pieces of a
+# sub-problem travel and merge (solve/share.hpp), not the driver above it (solve_case, strategy).
+SEARCH_FILES = re.compile(r"^lib/solve/(search[a-z_]*|lookahead)\.(hpp|cpp)$")
+SEARCH_MAY_INCLUDE = {"interval", "model", "prune"} | {
+    f"solve/{h}.hpp" for h in ("lending", "params", "budget", "box_log", "search_state", "result", "bisector",
+                               "certifier", "search", "search_step", "search_core", "lookahead")}
+ANY_INCLUDE = re.compile(r'#include ["<]([^">]+)[">]')
+
+
+def search_include_error(rel, line):
+    """Why `line` of search file `rel` breaks the search's rule, or None."""
+    m = ANY_INCLUDE.match(line.strip())
+    if not m:
+        return None
+    name = m.group(1)
+    if name.startswith("mpi"):
+        return f"{rel}: the search may not include <{name}>: it sees other processes only through solve/lending.hpp"
+    if "/" not in name or line.strip().startswith("#include <"):
+        return None
+    if name in SEARCH_MAY_INCLUDE or name.split("/")[0] in SEARCH_MAY_INCLUDE:
+        return None
+    return (f"{rel}: the search may not include {name}: it sees lending only through solve/lending.hpp "
+            "(lib/README.md, Rules)")
+
 
 def folder_of(path):
     rel = os.path.relpath(path, ROOT).split(os.sep)
@@ -48,8 +73,13 @@ def main():
                     continue
                 path = os.path.join(dirpath, name)
                 here = folder_of(path)
+                rel = os.path.relpath(path, ROOT).replace(os.sep, "/")
                 with open(path) as f:
                     for n, line in enumerate(f, 1):
+                        if SEARCH_FILES.match(rel):
+                            why = search_include_error(f"{rel}:{n}", line)
+                            if why:
+                                bad.append(why)
                         m = INCLUDE.match(line.strip())
                         if not m or m.group(1) == here:
                             continue

@@ -1,14 +1,15 @@
 #pragma once
 // One search over the processes of an MPI job: `mpirun -np N linkbox solve CASE`.
 //
-// Every rank loads the case and runs --threads search slots; rank 0 also coordinates (in its
-// main thread, which does all the MPI calls of its process, as on every rank). Slots that run
-// dry ask rank 0 for work: whole sub-problems first, then boxes taken from a running search
-// (its oldest pending box, the largest subtree in depth-first order, with its place in the
-// tree and its LP backoff). A sub-problem whose boxes went to several slots is finished
-// (merged in search-tree order, refined) once every piece is back, so the result is the one
-// process's. A racing sub-problem ("auto" with several candidates) is not split: the race
-// decides by the order in which one search meets its boxes.
+// Every rank loads the case and runs --threads search slots (slots.hpp); rank 0 also
+// coordinates (coordinator.hpp, in its main thread, which does all the MPI calls of its
+// process, as on every rank). Slots that run dry ask rank 0 for work: whole sub-problems
+// first, then boxes taken from a running search (its oldest pending box, the largest subtree
+// in depth-first order, with its place in the tree and its LP backoff). A sub-problem whose
+// boxes went to several slots is finished (merged in search-tree order, refined) once every
+// piece is back, so the result is the one process's. A racing sub-problem ("auto" with
+// several candidates) is not split: the race decides by the order in which one search meets
+// its boxes.
 //
 // Limits: rank 0 sums the boxes every rank reports and tells all to stop; a time limit or an
 // interrupt stops each rank by itself and rank 0 is told. Every pending box comes back.

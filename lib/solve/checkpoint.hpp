@@ -4,7 +4,7 @@
 // raced candidate's search state and the race's position), or finished (its result).
 // Written with solve/output_file.hpp: atomically where the file is a regular one.
 #include "prune/counters.hpp"
-#include "solve/branch_and_prune.hpp"
+#include "solve/search_state.hpp"
 #include "solve/result.hpp"
 
 #include <optional>

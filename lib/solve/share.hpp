@@ -4,7 +4,8 @@
 // boxes another search gave away, with their places in the tree and their LP backoff), and the
 // finish of a sub-problem from the pieces its searches left. Every box is processed as one
 // process would, so the merged pieces end as the unbroken search does.
-#include "solve/branch_and_prune.hpp"
+#include "solve/lending.hpp"
+#include "solve/search_state.hpp"
 #include "solve/solve_case.hpp"
 
 #include <string>
@@ -23,34 +24,6 @@ struct Piece {
   std::vector<std::pair<std::string, double>> race;  // as SubResult::race (the whole sub-problem's)
   // Adds another piece of the same sub-problem and strategy: solutions, counts, work, pending.
   void merge(Piece&& other);
-};
-
-// Asked between two boxes of a search: one that does not race gives boxes away; a race's leader
-// lends them (a race decides by the order in which one process meets the boxes, so the lent
-// boxes' outcomes come back to it, Search::lend).
-class Sharing {
- public:
-  virtual ~Sharing() = default;
-  virtual bool asked() = 0;  // before every box, cheap: true pauses the search for give()
-  // The paused search's pending boxes may be taken (Search::state / set_state), or none: true
-  // when some were.
-  virtual bool give(size_t subproblem, const std::vector<std::string>& strategy, Search& search) = 0;
-  // A race's leader lends instead (Search::lend): the box stays in its list and its subtree's
-  // records come back through Search::deliver, so the race runs as in one process. True when
-  // a box was lent. The default lends nothing.
-  virtual bool lend(size_t /*subproblem*/, const std::vector<std::string>& /*strategy*/, Search& /*search*/) {
-    return false;
-  }
-  // The lender lost the lead: the searches of its lent boxes may stop, and their records, still
-  // on the way, are no longer taken (the lender shrinks those boxes itself, Search::unlend).
-  virtual void recall() {}
-  // The race is over: its searches take no more deliveries.
-  virtual void end_lending() {}
-  // A search of lent boxes whose records nobody wants any more (the race ended): it may stop.
-  virtual bool abandoned() { return false; }
-  // A search of lent boxes sends its records on as it goes (the lender's front may be
-  // waiting for them), not only with its piece at the end.
-  virtual void send_records(size_t /*subproblem*/, std::vector<SearchState::Record> /*records*/) {}
 };
 
 // Runs sub-problem i as solve_case does (its race when "auto" has several candidates).

@@ -452,11 +452,11 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
         race.target = target_of(race.next);
       }
       // Every thread on this candidate's turn: the turn still ends where one thread ends it
-      // (look-ahead mode, branch_and_prune.cpp), so the race and its winner do not depend on
+      // (look-ahead mode, lookahead.hpp), so the race and its winner do not depend on
       // the thread count.
       search.run(run.threads, race.target);
     }
-    if (search.finished()) {
+    if (search.complete()) {
       race.winner = static_cast<int>(race.next);
       break;
     }
@@ -489,7 +489,7 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
   if (race.winner < 0) {
     save(false);
     for (size_t k = 1; k < racers.size(); ++k)
-      if (racers[k]->search->fraction_done() > racers[best]->search->fraction_done()) best = k;
+      if (racers[k]->search->volume_done() > racers[best]->search->volume_done()) best = k;
   } else {
     best = static_cast<size_t>(race.winner);
     save(false);  // a checkpoint meanwhile resumes with the refinement

@@ -4,8 +4,8 @@
 // scheduling), with shared limits and progress on stderr.
 #include "formulate/formulation.hpp"
 #include "solve/bisector.hpp"
-#include "solve/branch_and_prune.hpp"
 #include "solve/result.hpp"
+#include "solve/search.hpp"
 #include "solve/strategy.hpp"
 
 #include <map>

@@ -3,7 +3,7 @@
 #include "formulate/load.hpp"
 #include "formulate/to_lph.hpp"
 #include "prune/lp_relaxation.hpp"
-#include "solve/branch_and_prune.hpp"
+#include "solve/search.hpp"
 #include "tests/cli_run.hpp"
 
 #include <catch2/catch.hpp>
@@ -388,7 +388,7 @@ TEST_CASE("the share of the search tree resolved counts leaves by depth, whateve
   solve::Search search(Box{Interval(0, 1), Interval(0, 1)}, seq, {0, 1}, p, budget);
   CHECK(search.tree_done() == 0);
   double before = 0;
-  for (double limit = 1; !search.finished(); limit += 7) {
+  for (double limit = 1; !search.complete(); limit += 7) {
     search.run(1, limit);
     const double done = search.tree_done();
     CHECK(done >= before);

@@ -2,7 +2,7 @@
 // one strategy each overlap exactly one of another's (angles modulo 2 pi).
 #include "formulate/load.hpp"
 #include "interval/rigorous.hpp"
-#include "solve/branch_and_prune.hpp"
+#include "solve/search.hpp"
 #include "solve/solve_case.hpp"
 #include "solve/share.hpp"
 #include "solve/strategy.hpp"
@@ -131,7 +131,7 @@ TEST_CASE("a search cut at work limits stops at the same box on any number of th
     solve::Budget budget(p);
     solve::Search search(sub.system.domain(), *strategy.sequence, sub.split_dims, p, budget);
     std::vector<solve::SearchState> out;
-    for (double limit = 50; !search.finished(); limit *= 1.5) {
+    for (double limit = 50; !search.complete(); limit *= 1.5) {
       search.run(threads, limit);
       out.push_back(search.state());
     }
@@ -177,8 +177,8 @@ struct ThreadLending final : solve::Sharing {
     if (!wanted && ++calls % 7 == 0) wanted = true;
     return wanted;
   }
-  bool give(size_t, const std::vector<std::string>&, solve::Search&) override { return false; }
-  bool lend(size_t i, const std::vector<std::string>& strategy, solve::Search& search) override {
+  bool give(size_t, const std::vector<std::string>&, solve::Lender&) override { return false; }
+  bool lend(size_t i, const std::vector<std::string>& strategy, solve::Lender& search) override {
     wanted = false;
     auto node = search.lend();
     if (!node) return false;
