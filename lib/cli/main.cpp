@@ -118,7 +118,7 @@ nlohmann::json search_settings(const solve::RunOptions& o) {
   return {{"sigma", o.params.sigma},
           {"rho", o.params.rho},
           {"order", o.params.order == solve::Order::depth_first ? "dfs" : "bfs"},
-          {"prune", solve::strategy_name(o.strategy.contractors)},
+          {"prune", o.strategy.prune.text()},
           {"bisect", solve::to_string(o.bisect)},
           {"lp", prune::lp::to_string(o.strategy.lp)},
           {"arith", to_string(o.strategy.arith)}};
@@ -142,15 +142,15 @@ void resolve_settings(SolveCommand& cmd, const input::SolveSettings& s, const st
   from_case("--sigma", "sigma", s.sigma, [&](double x) { o.params.sigma = x; });
   from_case("--rho", "rho", s.rho, [&](double x) { o.params.rho = x; });
   from_case("--time-limit", "time_limit", s.time_limit, [&](double x) { o.params.time_limit = x; });
-  o.strategy.contractors = solve::parse_strategy_list(cmd.prune);
-  from_case("--prune", "prune", s.prune, [&](const std::string& x) { o.strategy.contractors = solve::parse_strategy_list(x); });
+  o.strategy.prune = solve::Strategy::parse(cmd.prune);
+  from_case("--prune", "prune", s.prune, [&](const std::string& x) { o.strategy.prune = solve::Strategy::parse(x); });
   from_case("--bisect", "bisect", s.bisect, [&](const std::string& x) { o.bisect = solve::parse_bisect(x); });
 }
 
 // A resumed run takes the checkpoint's settings; a flag that says otherwise is refused.
 void resume_settings(SolveCommand& cmd, const nlohmann::json& saved) {
   solve::RunOptions& o = cmd.options;
-  o.strategy.contractors = solve::parse_strategy_list(cmd.prune);
+  o.strategy.prune = solve::Strategy::parse(cmd.prune);
   const nlohmann::json asked = search_settings(o);
   auto take = [&](const char* flag, const char* name, auto apply) {
     if (cmd.given(flag) && asked.at(name) != saved.at(name))
@@ -163,7 +163,7 @@ void resume_settings(SolveCommand& cmd, const nlohmann::json& saved) {
   take("--order", "order", [&](const nlohmann::json& v) {
     o.params.order = v == "bfs" ? solve::Order::breadth_first : solve::Order::depth_first;
   });
-  take("--prune", "prune", [&](const nlohmann::json& v) { o.strategy.contractors = solve::parse_strategy_list(v); });
+  take("--prune", "prune", [&](const nlohmann::json& v) { o.strategy.prune = solve::Strategy::parse(v.get<std::string>()); });
   take("--bisect", "bisect", [&](const nlohmann::json& v) { o.bisect = solve::parse_bisect(v); });
   take("--lp", "lp", [&](const nlohmann::json& v) {
     o.strategy.lp = v == "exact" ? prune::lp::LpBackend::exact : prune::lp::LpBackend::safe;
@@ -344,10 +344,10 @@ void add_search_options(CLI::App& cmd, SolveCommand& s) {
   cmd.add_option("--order", o.params.order, "dfs or bfs")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, solve::Order>{{"dfs", solve::Order::depth_first}, {"bfs", solve::Order::breadth_first}}));
-  s.prune = solve::strategy_name(o.strategy.contractors);  // the default
+  s.prune = o.strategy.prune.text();  // the default
   cmd.add_option("--prune", s.prune,
-                 "contractors: auto (default), or a comma-separated list of trapezoid, hc4, acid, newton, lp; '/' starts a "
-                 "stage that runs only when the earlier ones stall, e.g. hc4,newton/lp");
+                 "contractors: auto (default), or a comma-separated list of " + solve::contractor_names() +
+                     "; '/' starts a stage that runs only when the earlier ones stall, e.g. hc4,newton/lp");
   cmd.add_option("--bisect", o.bisect, "auto (default), widest, round-robin or smear")
       ->transform(CLI::CheckedTransformer(std::map<std::string, solve::Bisect>{{"auto", solve::Bisect::automatic},
                                                                               {"widest", solve::Bisect::widest},

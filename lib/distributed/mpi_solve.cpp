@@ -70,7 +70,7 @@ Piece piece_from(const Message& m) {
   SubCheckpoint c = solve::sub_checkpoint_from_text(m.payload);
   Piece p;
   p.subproblem = m.head.at("sub");
-  p.strategy = m.head.at("strategy").get<std::vector<std::string>>();
+  p.strategy = solve::Strategy::parse(m.head.at("strategy").get<std::string>());
   p.race = m.head.value("race", std::vector<std::pair<std::string, double>>{});
   p.state = std::move(c.searches.at(0));
   p.counters = std::move(c.counters.at(0));
@@ -78,7 +78,7 @@ Piece piece_from(const Message& m) {
 }
 
 json piece_head(const char* type, const Piece& p) {
-  return {{"t", type}, {"sub", p.subproblem}, {"strategy", p.strategy}, {"race", p.race}};
+  return {{"t", type}, {"sub", p.subproblem}, {"strategy", p.strategy.text()}, {"race", p.race}};
 }
 
 // One search slot: a thread that runs the units rank 0 hands it.
@@ -142,7 +142,7 @@ class Process {
       return s.steal.load(std::memory_order_relaxed);
     }
     // The oldest pending box: in depth-first order the shallowest, so the largest subtree.
-    bool give(size_t i, const std::vector<std::string>& strategy, solve::Search& search) override {
+    bool give(size_t i, const solve::Strategy& strategy, solve::Search& search) override {
       Slot& s = *p.slots_[k];
       s.steal.store(false);
       solve::SearchState st = search.state();
@@ -165,7 +165,7 @@ class Process {
     }
     // A race's leader: the box stays in its list; the records of its subtree come back here
     // (handle "records") and go to `search`.
-    bool lend(size_t i, const std::vector<std::string>& strategy, solve::Search& search) override {
+    bool lend(size_t i, const solve::Strategy& strategy, solve::Search& search) override {
       Slot& s = *p.slots_[k];
       s.steal.store(false);
       const auto node = search.lend();
@@ -373,7 +373,7 @@ void Process::send_unit(int worker, const std::string& kind, size_t sub, json ex
   head.update(extra);
   // A subtree, or a sub-problem with one strategy named, never races: it shares from the start.
   // Under "auto" the slot's heartbeat says whether the sub-problem raced.
-  const bool shares = kind == "tree" || (kind == "sub" && options_.strategy.contractors != std::vector<std::string>{"auto"});
+  const bool shares = kind == "tree" || (kind == "sub" && !options_.strategy.prune.is_auto());
   queue_[worker].push_back({next_unit_++, sub, kind, shares});
   ++figures_.units;
   wire_.send(worker / slots_per_rank_, {0, head, std::move(payload)});
@@ -471,7 +471,7 @@ void Process::coordinate(const Message& m) {
       SubState& s = subs_[gift.subproblem];
       ++s.live;
       figures_.boxes_given += static_cast<long>(gift.state.pending.size());
-      json extra = {{"strategy", gift.strategy}};
+      json extra = {{"strategy", gift.strategy.text()}};
       if (m.head.value("lend", false)) s.owner = worker_of(m), s.owner_unit = victim.unit;
       if (m.head.value("lend", false) || m.head.value("record", false)) {
         extra["record"] = true;

@@ -182,7 +182,6 @@ Search::Search(const Box& start, prune::Sequence& contractor, std::vector<int> s
                Budget& budget, Certifier* certifier, const Bisector* bisector)
     : s_(new State(contractor, std::move(split_dims), params, budget, certifier, bisector)) {
   s_->start = start;
-  s_->params.rho = rho_for(params.rho, true);  // direct users: the papers' rule unless given
   s_->pending.push_back({start, "", {}});
 }
 

@@ -6,6 +6,8 @@
 // process would, so the merged pieces end as the unbroken search does.
 #include "solve/branch_and_prune.hpp"
 #include "solve/solve_case.hpp"
+#include "solve/strategy.hpp"
+#include "solve/summary.hpp"  // summarise: a distributed run ends as solve_case does
 
 #include <string>
 #include <utility>
@@ -17,7 +19,7 @@ namespace linkbox::solve {
 // their paths, counts and work, and the boxes still pending when a limit stopped it.
 struct Piece {
   size_t subproblem = 0;
-  std::vector<std::string> strategy;  // the candidate that ran ("auto" resolved; after a race its winner)
+  Strategy strategy;  // the candidate that ran ("auto" resolved; after a race its winner)
   SearchState state;
   std::vector<prune::Counters> counters;
   std::vector<std::pair<std::string, double>> race;  // as SubResult::race (the whole sub-problem's)
@@ -34,11 +36,11 @@ class Sharing {
   virtual bool asked() = 0;  // before every box, cheap: true pauses the search for give()
   // The paused search's pending boxes may be taken (Search::state / set_state), or none: true
   // when some were.
-  virtual bool give(size_t subproblem, const std::vector<std::string>& strategy, Search& search) = 0;
+  virtual bool give(size_t subproblem, const Strategy& strategy, Search& search) = 0;
   // A race's leader lends instead (Search::lend): the box stays in its list and its subtree's
   // records come back through Search::deliver, so the race runs as in one process. True when
   // a box was lent. The default lends nothing.
-  virtual bool lend(size_t /*subproblem*/, const std::vector<std::string>& /*strategy*/, Search& /*search*/) {
+  virtual bool lend(size_t /*subproblem*/, const Strategy& /*strategy*/, Search& /*search*/) {
     return false;
   }
   // The lender lost the lead: the searches of its lent boxes may stop, and their records, still
@@ -63,7 +65,7 @@ bool run_subproblem(const formulate::Formulation& formulation, size_t i, const R
 // Searches pending boxes of sub-problem i (a subtree given away, or lent: `record` keeps a
 // record of every box, for the lender) with `strategy`.
 Piece run_subtree(const formulate::Formulation& formulation, size_t i, const RunOptions& options, Budget& budget,
-                  Sharing* sharing, std::vector<std::string> strategy, std::vector<SearchState::Node> nodes,
+                  Sharing* sharing, const Strategy& strategy, std::vector<SearchState::Node> nodes,
                   bool record = false);
 
 // Sub-problem i's result from all its pieces merged, as the single search would have ended it:
@@ -73,9 +75,5 @@ SubResult finish_subproblem(const formulate::Formulation& formulation, size_t i,
 
 // A sub-problem that no search reached before a limit stopped the run.
 SubResult unstarted_subproblem(const formulate::Formulation& formulation, size_t i);
-
-// The whole run's figures from its sub-problems (totals, counters by contractor, the strategy
-// that ran, completeness), as solve_case ends.
-void summarise(CaseResult& result, const RunOptions& options, const Budget& budget);
 
 }  // namespace linkbox::solve

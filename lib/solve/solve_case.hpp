@@ -6,7 +6,7 @@
 #include "solve/bisector.hpp"
 #include "solve/branch_and_prune.hpp"
 #include "solve/result.hpp"
-#include "solve/strategy.hpp"
+#include "solve/pruning.hpp"
 
 #include <map>
 #include <string>
