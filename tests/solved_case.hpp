@@ -23,11 +23,11 @@ struct SolvedCase {
   std::vector<Box> roots;  // certified, distinct, in the case's output variables
 };
 
-inline SolvedCase solve_loaded(formulate::LoadedCase c, std::vector<std::string> prune, double sigma) {
+inline SolvedCase solve_loaded(formulate::LoadedCase c, const std::string& prune, double sigma) {
   SolvedCase run{std::move(c), {}, {}, {}, {}};
   solve::RunOptions o;
   o.progress = false;
-  o.strategy.contractors = std::move(prune);
+  o.strategy.prune = solve::Strategy::parse(prune);
   o.params.sigma = sigma;
   run.r = solve::solve_case(*run.c.formulation, o);
   REQUIRE(run.r.complete);
@@ -39,9 +39,9 @@ inline SolvedCase solve_loaded(formulate::LoadedCase c, std::vector<std::string>
   return run;
 }
 
-inline SolvedCase solve_text(const std::string& toml, std::vector<std::string> prune = {"hc4", "newton"},
+inline SolvedCase solve_text(const std::string& toml, const std::string& prune = "hc4,newton",
                              double sigma = 1e-6) {
-  return solve_loaded(formulate::load_case_text(toml, "inline.toml"), std::move(prune), sigma);
+  return solve_loaded(formulate::load_case_text(toml, "inline.toml"), prune, sigma);
 }
 
 }  // namespace linkbox::test

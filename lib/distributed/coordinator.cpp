@@ -83,7 +83,7 @@ void Coordinator::on_gift(const Message& m) {
   SubState& s = subs_[gift.subproblem];
   ++s.live;
   figures_.boxes_given += static_cast<long>(gift.state.pending.size());
-  json extra = {{"strategy", gift.strategy}};
+  json extra = {{"strategy", gift.strategy.text()}};
   if (m.head.value("lend", false)) s.owner = worker_of(m), s.owner_unit = victim.unit;
   if (m.head.value("lend", false) || m.head.value("record", false)) {
     extra["record"] = true;
@@ -141,7 +141,7 @@ void Coordinator::send_unit(int worker, const std::string& kind, size_t sub, jso
   head.update(extra);
   // A subtree, or a sub-problem with one strategy named, never races: it shares from the start.
   // Under "auto" the slot's heartbeat says whether the sub-problem raced.
-  const bool shares = kind == "tree" || (kind == "sub" && options_.strategy.contractors != std::vector<std::string>{"auto"});
+  const bool shares = kind == "tree" || (kind == "sub" && !options_.strategy.prune.is_auto());
   queue_[worker].push_back({next_unit_++, sub, kind, shares});
   ++figures_.units;
   wire_.send(worker / slots_per_rank_, {0, head, std::move(payload)});

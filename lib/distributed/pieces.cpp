@@ -29,7 +29,7 @@ Piece piece_from(const Message& m) {
   SubCheckpoint c = solve::sub_checkpoint_from_text(m.payload);
   Piece p;
   p.subproblem = m.head.at("sub");
-  p.strategy = m.head.at("strategy").get<std::vector<std::string>>();
+  p.strategy = solve::Strategy::parse(m.head.at("strategy").get<std::string>());
   p.race = m.head.value("race", std::vector<std::pair<std::string, double>>{});
   p.state = std::move(c.searches.at(0));
   p.counters = std::move(c.counters.at(0));
@@ -37,7 +37,7 @@ Piece piece_from(const Message& m) {
 }
 
 nlohmann::json piece_head(const char* type, const Piece& p) {
-  return {{"t", type}, {"sub", p.subproblem}, {"strategy", p.strategy}, {"race", p.race}};
+  return {{"t", type}, {"sub", p.subproblem}, {"strategy", p.strategy.text()}, {"race", p.race}};
 }
 
 }  // namespace linkbox::distributed

@@ -43,7 +43,7 @@ class Slots::Sharing final : public solve::Sharing {
     slots_.death_.step();
     return s_.steal.load(std::memory_order_relaxed);
   }
-  bool give(size_t i, const std::vector<std::string>& strategy, solve::Lender& search) override {
+  bool give(size_t i, const solve::Strategy& strategy, solve::Lender& search) override {
     s_.steal.store(false);
     auto node = search.give();
     Piece gift{i, strategy, {}, {}, {}};
@@ -61,7 +61,7 @@ class Slots::Sharing final : public solve::Sharing {
   }
   // A race's leader: the box stays in its list; the records of its subtree come back to this
   // slot (Slots::records) and go to `search`.
-  bool lend(size_t i, const std::vector<std::string>& strategy, solve::Lender& search) override {
+  bool lend(size_t i, const solve::Strategy& strategy, solve::Lender& search) override {
     s_.steal.store(false);
     const auto node = search.lend();
     Piece gift{i, strategy, {}, {}, {}};

@@ -34,7 +34,7 @@ json parameters_json(const solve::RunOptions& options, const solve::CaseResult& 
   return {{"sigma", p.sigma},
           {"rho", p.rho > 0 || result.rho <= 0 ? p.rho : result.rho},  // auto resolved
           {"order", p.order == solve::Order::depth_first ? "dfs" : "bfs"},
-          {"prune", solve::strategy_name(options.strategy.contractors)},
+          {"prune", options.strategy.prune.text()},
           {"bisect", solve::to_string(options.bisect)},
           {"lp", prune::lp::to_string(options.strategy.lp)},
           {"arith", to_string(options.strategy.arith)},
@@ -131,7 +131,7 @@ json result_json(const std::string& case_name, const std::string& case_file,
     }
   }
   if (auto notes = formulation.model_notes(); !notes.empty()) j["model_notes"] = notes;  // e.g. what was lifted
-  j["strategy"] = solve::strategy_name(result.strategy);  // what ran, "auto" resolved
+  j["strategy"] = result.strategy.text();  // what ran, "auto" resolved
   j["bisect"] = result.bisect;
   if (!result.subproblems.empty() && result.subproblems[0].race.size() > 1) {
     json race = json::array();  // "auto": the candidates raced, each one's work, the winner last

@@ -14,7 +14,7 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
                    const solve::CaseResult& r) {
   const auto& f = *c.formulation;
   std::fprintf(out, "case      %s (%s, %s)\n", c.name.c_str(), c.kind.c_str(), c.file.c_str());
-  const std::string asked = solve::strategy_name(o.strategy.contractors), ran = solve::strategy_name(r.strategy);
+  const std::string asked = o.strategy.prune.text(), ran = r.strategy.text();
   std::string race_line;
   std::string prune = asked == ran || ran.empty() ? asked : asked + " (ran " + ran + ")";
   if (!r.subproblems.empty() && r.subproblems[0].race.size() > 1) {

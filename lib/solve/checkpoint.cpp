@@ -1,6 +1,7 @@
 #include "solve/checkpoint.hpp"
 
 #include "interval/box_json.hpp"
+#include "solve/output_file.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -126,6 +127,21 @@ std::vector<Box> boxes_in(const json& j) {
   return r;
 }
 
+// Format 1 stores a strategy as its names, with "/" between stages (none: no names).
+json strategy_out(const Strategy& s) {
+  json names = json::array();
+  for (size_t k = 0; k < s.stages().size(); ++k) {
+    if (k > 0) names.push_back("/");
+    for (ContractorKind c : s.stages()[k]) names.push_back(name_of(c));
+  }
+  return names;
+}
+Strategy strategy_in(const json& names) {
+  std::string text;
+  for (const std::string name : names) text += (name == "/" || text.empty() || text.back() == '/' ? "" : ",") + name;
+  return names.empty() ? Strategy() : Strategy::parse(text);
+}
+
 json result_out(const SubResult& r) {
   json residuals = json::array(), race = json::array();
   for (double x : r.residuals) residuals.push_back(num(x));
@@ -142,7 +158,7 @@ json result_out(const SubResult& r) {
           {"pending", boxes_out(r.pending)},
           {"volume_left", num(r.volume_left)},
           {"counters", counters_out(r.counters)},
-          {"strategy", r.strategy},
+          {"strategy", strategy_out(r.strategy)},
           {"bisect", r.bisect},
           {"race", race}};
 }
@@ -160,7 +176,7 @@ SubResult result_in(const json& j) {
   r.pending = boxes_in(j.at("pending"));
   r.volume_left = num(j.at("volume_left"));
   r.counters = counters_in(j.at("counters"));
-  r.strategy = j.at("strategy").get<std::vector<std::string>>();
+  r.strategy = strategy_in(j.at("strategy"));
   r.bisect = j.at("bisect");
   for (auto& x : j.at("race")) r.race.push_back({x.at(0).get<std::string>(), num(x.at(1))});
   if (r.solutions.size() != r.residuals.size() || r.solutions.size() != r.certified.size())
@@ -249,6 +265,52 @@ Checkpoint read_checkpoint(const std::string& path) {
     throw std::invalid_argument("checkpoint " + path + " is damaged: " + e.what());
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("checkpoint " + path + ": " + e.what());
+  }
+}
+
+Checkpointer::Checkpointer(std::string path, double every, std::string header, size_t subproblems)
+    : path_(std::move(path)), every_(every), header_(std::move(header)) {
+  if (enabled()) slots_.assign(subproblems, {to_json_text(SubCheckpoint{}), 0, false});
+}
+
+void Checkpointer::deposit(size_t i, const SubCheckpoint& state, bool running) {
+  if (!enabled()) return;
+  std::string text = to_json_text(state);
+  std::lock_guard lock(m_);
+  slots_[i] = {std::move(text), generation_.load(), running};
+  write_when_ready();
+}
+
+void Checkpointer::tick(double elapsed) {
+  if (!enabled() || elapsed < next_) return;
+  next_ = elapsed + every_;
+  std::lock_guard lock(m_);
+  ++generation_;
+  write_when_ready();
+}
+
+void Checkpointer::final_write() {
+  if (!enabled()) return;
+  std::lock_guard lock(m_);
+  write(true);
+}
+
+void Checkpointer::write_when_ready() {
+  if (written_ == generation_.load()) return;
+  for (auto& s : slots_)
+    if (s.running && s.generation < generation_.load()) return;
+  written_ = generation_.load();
+  write(false);
+}
+
+void Checkpointer::write(bool last) {
+  std::vector<std::string> texts;
+  for (auto& s : slots_) texts.push_back(s.text);
+  try {
+    write_output(path_, checkpoint_text(header_, texts));
+  } catch (const std::runtime_error& e) {
+    if (last) throw;
+    std::fprintf(stderr, "linkbox: checkpoint not written (the run goes on): %s\n", e.what());
   }
 }
 

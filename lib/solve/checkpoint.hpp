@@ -7,13 +7,15 @@
 #include "solve/search_state.hpp"
 #include "solve/result.hpp"
 
+#include <atomic>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace linkbox::solve {
 
-// Where a race between candidate strategies stands (see solve_case.cpp).
+// Where a race between candidate strategies stands (see solve/race.hpp).
 struct RacePosition {
   double turn = 0;
   size_t next = 0;     // the candidate whose run is under way or next
@@ -48,5 +50,40 @@ SubCheckpoint sub_checkpoint_from_text(const std::string& text);
 
 // Throws std::invalid_argument naming the file for anything that is not a linkbox checkpoint.
 Checkpoint read_checkpoint(const std::string& path);
+
+// Collects each sub-problem's state as it goes and writes the checkpoint. A running search
+// deposits its state whenever a new checkpoint generation starts (it pauses between two boxes
+// for that); a sub-problem that is not running (not started, refining, finished) keeps its
+// last deposit. The file is written once every running one has deposited for the generation,
+// by whichever deposits last.
+class Checkpointer {
+ public:
+  Checkpointer() = default;  // writes nothing
+  // Every `every` seconds to `path`, with `header` (Checkpoint::header), for `subproblems`.
+  Checkpointer(std::string path, double every, std::string header, size_t subproblems);
+  bool enabled() const { return !path_.empty(); }
+  int generation() const { return generation_.load(); }
+  // running: the state changes and must be deposited again for every new generation.
+  void deposit(size_t i, const SubCheckpoint& state, bool running);
+  void tick(double elapsed);  // the run's clock: starts a generation when one is due
+  void final_write();         // throws when the file cannot be written
+
+ private:
+  struct Slot {
+    std::string text;
+    int generation;
+    bool running;
+  };
+  void write_when_ready();
+  void write(bool last);
+  std::string path_;
+  double every_ = 0;
+  std::string header_;
+  std::atomic<int> generation_{0};
+  int written_ = 0;
+  double next_ = 0;
+  std::mutex m_;
+  std::vector<Slot> slots_;
+};
 
 }  // namespace linkbox::solve

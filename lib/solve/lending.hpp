@@ -7,6 +7,7 @@
 // no search tree.
 #include "prune/counters.hpp"
 #include "solve/search_state.hpp"
+#include "solve/strategy.hpp"
 
 #include <cstddef>
 #include <optional>
@@ -40,11 +41,11 @@ class Sharing {
   virtual bool asked() = 0;  // before every box, cheap: true pauses the search for give()
   // The paused search's oldest pending box may be taken (Lender::give), or none: true when
   // one was.
-  virtual bool give(size_t subproblem, const std::vector<std::string>& strategy, Lender& search) = 0;
+  virtual bool give(size_t subproblem, const Strategy& strategy, Lender& search) = 0;
   // A race's leader lends instead (Lender::lend): the box stays in its list and its subtree's
   // records come back through Lender::deliver, so the race runs as in one process. True when
   // a box was lent. The default lends nothing.
-  virtual bool lend(size_t /*subproblem*/, const std::vector<std::string>& /*strategy*/, Lender& /*search*/) {
+  virtual bool lend(size_t /*subproblem*/, const Strategy& /*strategy*/, Lender& /*search*/) {
     return false;
   }
   // The lender lost the lead: the searches of its lent boxes may stop, and their records, still

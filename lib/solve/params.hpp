@@ -9,7 +9,7 @@ enum class Order { depth_first, breadth_first };
 
 struct Params {
   double sigma = 1e-4;  // a box whose longest split side is <= sigma is a solution box
-  double rho = 0;       // stop shrinking when volume(after)/volume(before) > rho; 0: auto (rho_for)
+  double rho = 0;  // split when volume(after)/volume(before) > rho; in RunOptions 0: not given (settings_for)
   Order order = Order::depth_first;
   double time_limit = 0;  // seconds; 0 = none
   long max_boxes = 0;     // processed boxes over the whole run; 0 = none

@@ -3,6 +3,7 @@
 // whole domain. Plain data, read by verify and report.
 #include "interval/box.hpp"
 #include "prune/counters.hpp"
+#include "solve/strategy.hpp"
 
 #include <string>
 #include <vector>
@@ -40,7 +41,7 @@ struct SubResult {
   std::vector<Box> pending;
   double volume_left = 0;
   std::vector<prune::Counters> counters;  // per contractor of the strategy
-  std::vector<std::string> strategy;      // what ran ("auto" resolved; "/" between stages)
+  Strategy strategy;                      // what ran ("auto" resolved; none when no search did)
   std::string bisect;                     // the bisection rule ("auto" resolved)
   double rho = 0;                         // the rho used (auto resolved)
   // When "auto" raced candidates: each one's name and work done (boxes + kLpWork per LP),
@@ -50,7 +51,7 @@ struct SubResult {
 
 struct CaseResult {
   std::vector<SubResult> subproblems;
-  std::vector<std::string> strategy;          // what ran (see SubResult::strategy)
+  Strategy strategy;                          // what ran (see SubResult::strategy)
   std::string bisect;                         // likewise
   double rho = 0;                             // likewise
   std::vector<std::string> contractor_names;  // one per counter

@@ -138,7 +138,6 @@ struct Search::State {
 Search::Search(const Box& start, prune::Sequence& contractor, std::vector<int> split_dims, const Params& params,
                Budget& budget, Certifier* certifier, const Bisector* bisector)
     : s_(new State({contractor, certifier, bisector, start, std::move(split_dims), params, budget})) {
-  s_->core.setup.params.rho = rho_for(params.rho, true);  // direct users: the papers' rule unless given
   s_->core.committed.pending.push_back({start, "", {}});
 }
 

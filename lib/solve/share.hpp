@@ -7,6 +7,8 @@
 #include "solve/lending.hpp"
 #include "solve/search_state.hpp"
 #include "solve/solve_case.hpp"
+#include "solve/strategy.hpp"
+#include "solve/summary.hpp"  // summarise: a distributed run ends as solve_case does
 
 #include <string>
 #include <utility>
@@ -18,7 +20,7 @@ namespace linkbox::solve {
 // their paths, counts and work, and the boxes still pending when a limit stopped it.
 struct Piece {
   size_t subproblem = 0;
-  std::vector<std::string> strategy;  // the candidate that ran ("auto" resolved; after a race its winner)
+  Strategy strategy;  // the candidate that ran ("auto" resolved; after a race its winner)
   SearchState state;
   std::vector<prune::Counters> counters;
   std::vector<std::pair<std::string, double>> race;  // as SubResult::race (the whole sub-problem's)
@@ -36,7 +38,7 @@ bool run_subproblem(const formulate::Formulation& formulation, size_t i, const R
 // Searches pending boxes of sub-problem i (a subtree given away, or lent: `record` keeps a
 // record of every box, for the lender) with `strategy`.
 Piece run_subtree(const formulate::Formulation& formulation, size_t i, const RunOptions& options, Budget& budget,
-                  Sharing* sharing, std::vector<std::string> strategy, std::vector<SearchState::Node> nodes,
+                  Sharing* sharing, const Strategy& strategy, std::vector<SearchState::Node> nodes,
                   bool record = false);
 
 // Sub-problem i's result from all its pieces merged, as the single search would have ended it:
@@ -46,9 +48,5 @@ SubResult finish_subproblem(const formulate::Formulation& formulation, size_t i,
 
 // A sub-problem that no search reached before a limit stopped the run.
 SubResult unstarted_subproblem(const formulate::Formulation& formulation, size_t i);
-
-// The whole run's figures from its sub-problems (totals, counters by contractor, the strategy
-// that ran, completeness), as solve_case ends.
-void summarise(CaseResult& result, const RunOptions& options, const Budget& budget);
 
 }  // namespace linkbox::solve

@@ -5,8 +5,8 @@
 #include "formulate/formulation.hpp"
 #include "solve/bisector.hpp"
 #include "solve/result.hpp"
+#include "solve/pruning.hpp"
 #include "solve/search.hpp"
-#include "solve/strategy.hpp"
 
 #include <map>
 #include <string>

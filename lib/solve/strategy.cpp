@@ -7,77 +7,76 @@
 #include "prune/lp_relaxation.hpp"
 #include "prune/newton_contractor.hpp"
 #include "prune/trapezoid.hpp"
+#include "solve/pruning.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 namespace linkbox::solve {
 
-using namespace prune;
-
 namespace {
 
-std::unique_ptr<Contractor> make_contractor(const std::string& name, const StrategyOptions& options,
-                                            const formulate::SubProblem& sub) {
+using prune::Contractor;
+using Make = std::unique_ptr<Contractor> (*)(const StrategyOptions&, const formulate::SubProblem&);
+
+std::unique_ptr<Contractor> make_trapezoid(const StrategyOptions& options, const formulate::SubProblem& sub) {
   const model::System& pruned = sub.pruned();
-  if (name == "trapezoid") {
-    if (!pruned.is_multi_affine())
-      throw std::invalid_argument("--prune trapezoid needs a multi-affine system; this one is not");
-    return std::make_unique<Trapezoid>(pruned.equations, options.arith);
-  }
-  if (name == "lp") {
-    const auto backend = options.arith != Arith::verified ? lp::LpBackend::float_trusted : options.lp;
-    if (sub.lph) return std::make_unique<LpRelaxation>(*sub.lph, backend);
-    // Any polynomial system, lifted to L/P/H form around the search's own variables.
-    model::LphSystem lph = formulate::to_lph(sub.system);
-    auto inner = std::make_unique<LpRelaxation>(lph, backend);
-    return std::make_unique<Lifted>(std::move(lph), sub.system.variables.size(), std::move(inner));
-  }
-  if (name == "newton") return std::make_unique<IntervalNewton>(pruned.equations, pruned.variables.size(), options.arith);
-  if (name == "hc4") return std::make_unique<Hc4>(pruned.equations, options.arith, pruned.inequalities);
-  if (name == "acid") {
-    std::vector<int> dims;
-    for (int d : sub.split_dims)
-      if (d < static_cast<int>(pruned.variables.size())) dims.push_back(d);
-    return std::make_unique<Acid>(std::make_unique<Hc4>(pruned.equations, options.arith, pruned.inequalities), dims);
-  }
-  throw std::invalid_argument("unknown pruning strategy '" + name + "' (known: auto, trapezoid, lp, hc4, acid, newton)");
+  if (!pruned.is_multi_affine())
+    throw std::invalid_argument("--prune trapezoid needs a multi-affine system; this one is not");
+  return std::make_unique<prune::Trapezoid>(pruned.equations, options.arith);
 }
 
-}  // namespace
-
-std::vector<std::vector<std::string>> auto_candidates(const formulate::SubProblem& sub) {
-  if (sub.clipping && sub.pruned().is_multi_affine()) return {{"trapezoid"}};
-  return {{"hc4", "newton"}, {"hc4", "newton", "/", "lp"}};
+std::unique_ptr<Contractor> make_lp(const StrategyOptions& options, const formulate::SubProblem& sub) {
+  const auto backend = options.arith != Arith::verified ? prune::lp::LpBackend::float_trusted : options.lp;
+  if (sub.lph) return std::make_unique<prune::LpRelaxation>(*sub.lph, backend);
+  // Any polynomial system, lifted to L/P/H form around the search's own variables.
+  model::LphSystem lph = formulate::to_lph(sub.system);
+  auto inner = std::make_unique<prune::LpRelaxation>(lph, backend);
+  return std::make_unique<prune::Lifted>(std::move(lph), sub.system.variables.size(), std::move(inner));
 }
 
-Strategy make_strategy(const StrategyOptions& options, const formulate::SubProblem& sub) {
-  Strategy s;
-  for (auto& name : options.contractors) {
-    if (name == "auto") {
-      const auto chosen = auto_candidates(sub).front();
-      s.names.insert(s.names.end(), chosen.begin(), chosen.end());
-    } else {
-      s.names.push_back(name);
-    }
-  }
-  std::vector<std::unique_ptr<Contractor>> members;
-  std::vector<int> stages;
-  int stage = 0;
-  for (auto& name : s.names) {
-    if (name == "/") {
-      stage += !members.empty() && stages.back() == stage;
-      continue;
-    }
-    members.push_back(make_contractor(name, options, sub));
-    stages.push_back(stage);
-  }
-  if (members.empty()) throw std::invalid_argument("no pruning strategy given");
-  s.sequence = std::make_unique<Sequence>(std::move(members), sub.split_dims, std::move(stages), options.stall);
-  return s;
+std::unique_ptr<Contractor> make_hc4(const StrategyOptions& options, const formulate::SubProblem& sub) {
+  const model::System& pruned = sub.pruned();
+  return std::make_unique<prune::Hc4>(pruned.equations, options.arith, pruned.inequalities);
 }
 
-std::vector<std::string> parse_strategy_list(const std::string& text) {
+std::unique_ptr<Contractor> make_acid(const StrategyOptions& options, const formulate::SubProblem& sub) {
+  const model::System& pruned = sub.pruned();
+  std::vector<int> dims;
+  for (int d : sub.split_dims)
+    if (d < static_cast<int>(pruned.variables.size())) dims.push_back(d);
+  return std::make_unique<prune::Acid>(make_hc4(options, sub), dims);
+}
+
+std::unique_ptr<Contractor> make_newton(const StrategyOptions& options, const formulate::SubProblem& sub) {
+  const model::System& pruned = sub.pruned();
+  return std::make_unique<prune::IntervalNewton>(pruned.equations, pruned.variables.size(), options.arith);
+}
+
+struct Row {
+  ContractorKind kind;
+  const char* name;
+  Make make;
+};
+
+// Every contractor a strategy can name, in the order the help text and messages list them.
+constexpr Row kContractors[] = {
+    {ContractorKind::trapezoid, "trapezoid", make_trapezoid},
+    {ContractorKind::lp, "lp", make_lp},
+    {ContractorKind::hc4, "hc4", make_hc4},
+    {ContractorKind::acid, "acid", make_acid},
+    {ContractorKind::newton, "newton", make_newton},
+};
+
+const Row& row_of(ContractorKind kind) {
+  return *std::find_if(std::begin(kContractors), std::end(kContractors), [&](const Row& r) { return r.kind == kind; });
+}
+
+constexpr const char* kAuto = "auto";
+
+// The text's names in order, "/" for each stage boundary; spaces dropped.
+std::vector<std::string> tokens_of(const std::string& text) {
   std::vector<std::string> r;
   std::string item;
   auto flush = [&] {
@@ -93,23 +92,91 @@ std::vector<std::string> parse_strategy_list(const std::string& text) {
     }
   }
   flush();
-  // Checked here so a misspelt name fails before any work, wherever it was written.
-  for (auto& name : r)
-    if (name != "/" && name != "auto" && name != "trapezoid" && name != "lp" && name != "hc4" && name != "acid" &&
-        name != "newton")
-      throw std::invalid_argument("unknown pruning strategy '" + name + "' (known: auto, trapezoid, lp, hc4, acid, newton)");
-  if (std::count(r.begin(), r.end(), "/") == static_cast<long>(r.size()))
-    throw std::invalid_argument("no pruning strategy given");
   return r;
 }
 
-std::string strategy_name(const std::vector<std::string>& contractors) {
-  std::string n;
-  for (size_t i = 0; i < contractors.size(); ++i) {
-    const bool stage = contractors[i] == "/";
-    n += stage ? "/" : (i == 0 || contractors[i - 1] == "/" ? "" : ",") + contractors[i];
+const Row* find_row(const std::string& name) {
+  for (const Row& r : kContractors)
+    if (name == r.name) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+const char* name_of(ContractorKind kind) { return row_of(kind).name; }
+
+std::string contractor_names() {
+  std::string r;
+  for (const Row& row : kContractors) r += (r.empty() ? "" : ", ") + std::string(row.name);
+  return r;
+}
+
+Strategy Strategy::automatic() {
+  Strategy s;
+  s.auto_ = true;
+  return s;
+}
+
+Strategy Strategy::parse(const std::string& text) {
+  const std::vector<std::string> tokens = tokens_of(text);
+  // Checked here so a misspelt name fails before any work, wherever it was written.
+  for (auto& name : tokens)
+    if (name != "/" && name != kAuto && !find_row(name))
+      throw std::invalid_argument("unknown pruning strategy '" + name + "' (known: " + kAuto + ", " +
+                                  contractor_names() + ")");
+  if (std::count(tokens.begin(), tokens.end(), "/") == static_cast<long>(tokens.size()))
+    throw std::invalid_argument("no pruning strategy given");
+  if (tokens == std::vector<std::string>{kAuto}) return automatic();
+  if (std::count(tokens.begin(), tokens.end(), kAuto) > 0)
+    throw std::invalid_argument(std::string("'") + kAuto + "' chooses the whole strategy; it is not combined with contractors");
+  std::vector<Stage> stages(1);
+  for (auto& name : tokens) {
+    if (name == "/") stages.emplace_back();
+    else stages.back().push_back(find_row(name)->kind);
   }
-  return n;
+  return Strategy(std::move(stages));
+}
+
+bool Strategy::empty() const { return !auto_ && stages_.empty(); }
+
+bool Strategy::uses(ContractorKind kind) const {
+  for (auto& stage : stages_)
+    if (std::find(stage.begin(), stage.end(), kind) != stage.end()) return true;
+  return false;
+}
+
+std::string Strategy::text() const {
+  if (auto_) return kAuto;
+  std::string t;
+  for (size_t k = 0; k < stages_.size(); ++k) {
+    if (k > 0) t += '/';
+    for (size_t j = 0; j < stages_[k].size(); ++j) t += (j > 0 ? "," : "") + std::string(name_of(stages_[k][j]));
+  }
+  return t;
+}
+
+std::vector<Strategy> candidates(const Strategy& strategy, const formulate::SubProblem& sub) {
+  if (!strategy.is_auto()) return {strategy};
+  using K = ContractorKind;
+  if (sub.clipping && sub.pruned().is_multi_affine()) return {Strategy({{K::trapezoid}})};
+  return {Strategy({{K::hc4, K::newton}}), Strategy({{K::hc4, K::newton}, {K::lp}})};
+}
+
+Pruning make_pruning(const Strategy& strategy, const StrategyOptions& options, const formulate::SubProblem& sub) {
+  if (strategy.is_auto()) throw std::logic_error("make_pruning: \"auto\" is resolved by candidates() first");
+  std::vector<std::unique_ptr<Contractor>> members;
+  std::vector<int> stages;
+  int stage = 0;  // empty stages take no number
+  for (auto& contractors : strategy.stages()) {
+    for (ContractorKind kind : contractors) {
+      members.push_back(row_of(kind).make(options, sub));
+      stages.push_back(stage);
+    }
+    stage += !contractors.empty();
+  }
+  if (members.empty()) throw std::invalid_argument("no pruning strategy given");
+  auto sequence = std::make_unique<prune::Sequence>(std::move(members), sub.split_dims, std::move(stages), options.stall);
+  return {strategy, std::move(sequence)};
 }
 
 }  // namespace linkbox::solve

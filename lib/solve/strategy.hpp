@@ -1,41 +1,45 @@
 #pragma once
-// Builds the contractor chain named on the command line for a sub-problem. New strategies
-// register here and nowhere else. A name list is comma-separated; '/' starts a stage that
-// runs only when the stages before it stall ("hc4,newton/lp": the LP relaxation only where
-// propagation and Newton no longer shrink the box). "auto" chooses from the system's shape.
-#include "formulate/formulation.hpp"
-#include "prune/contractor.hpp"
-#include "prune/lp/lp_solver.hpp"
-
+// What `--prune` (or a case's `[solve] prune`) names: "auto", or stages of contractors. A
+// stage is a comma-separated list; '/' starts a stage that runs only when the stages before it
+// stall ("hc4,newton/lp": the LP relaxation only where propagation and Newton no longer shrink
+// the box). The text is parsed once, where it comes in; reports and the messages between
+// processes carry the canonical text. The contractors and their names are one table, in
+// strategy.cpp: the parser, the help text, the error messages and the factory
+// (solve/pruning.hpp) all read it.
 #include <string>
 #include <vector>
 
 namespace linkbox::solve {
 
-struct StrategyOptions {
-  std::vector<std::string> contractors{"auto"};  // names; "/" separates stages
-  prune::lp::LpBackend lp = prune::lp::LpBackend::safe;  // safe | exact (float follows from arith)
-  Arith arith = Arith::verified;
-  double stall = 0.99;  // a stage stalls when it keeps more than this of the volume
+enum class ContractorKind { trapezoid, lp, hc4, acid, newton };
+
+const char* name_of(ContractorKind kind);
+// The contractors' names, as the help text and the error messages list them: "trapezoid, lp, ...".
+std::string contractor_names();
+
+class Strategy {
+ public:
+  using Stage = std::vector<ContractorKind>;
+
+  Strategy() = default;  // none: what a sub-problem that no search reached ran (text "")
+  explicit Strategy(std::vector<Stage> stages) : stages_(std::move(stages)) {}
+  static Strategy automatic();
+  // "hc4,newton/lp"; spaces are ignored. std::invalid_argument for an unknown name, for no
+  // contractor at all, and for "auto" beside other names ("auto" chooses the whole strategy).
+  static Strategy parse(const std::string& text);
+
+  bool is_auto() const { return auto_; }
+  bool empty() const;  // none (see above)
+  bool uses(ContractorKind kind) const;
+  // In order. A stage may be empty ("hc4//lp" keeps its text): it runs as no stage at all.
+  const std::vector<Stage>& stages() const { return stages_; }
+  std::string text() const;  // canonical: parse(text()) == *this
+
+  friend bool operator==(const Strategy&, const Strategy&) = default;
+
+ private:
+  bool auto_ = false;
+  std::vector<Stage> stages_;
 };
-
-struct Strategy {
-  std::unique_ptr<prune::Sequence> sequence;
-  std::vector<std::string> names;  // what runs, "auto" resolved, "/" between stages
-};
-
-// What "auto" chooses from on a sub-problem: trapezoid clipping on the spherical paper's
-// formulation; otherwise propagation and Newton alone, or with the LP relaxation where
-// they stall. The LP relaxation cuts the box count by 30-30 000x, but an LP costs as much as
-// kLpWork boxes, so which one wins depends on the system: solve_case races them.
-std::vector<std::vector<std::string>> auto_candidates(const formulate::SubProblem& sub);
-
-// Throws std::invalid_argument for an unknown name or a strategy that does not apply to
-// the sub-problem (e.g. trapezoid on a system that is not multi-affine).
-Strategy make_strategy(const StrategyOptions& options, const formulate::SubProblem& sub);
-
-// "hc4,newton/lp" -> {"hc4","newton","/","lp"}; std::invalid_argument for an unknown name.
-std::vector<std::string> parse_strategy_list(const std::string& text);
-std::string strategy_name(const std::vector<std::string>& contractors);  // the reverse
 
 }  // namespace linkbox::solve

@@ -32,7 +32,7 @@ Mapped solve_text(const std::string& text, const std::string& file, const std::s
   solve::RunOptions o;
   o.progress = false;
   o.params.sigma = sigma;
-  o.strategy.contractors = solve::parse_strategy_list(prune);
+  o.strategy.prune = solve::Strategy::parse(prune);
   const auto r = solve::solve_case(*m.c.formulation, o);
   REQUIRE(r.complete);
   m.v = verify::verify_case(*m.c.formulation, r);

@@ -30,8 +30,8 @@ using Run = test::SolvedCase;
 using test::solve_loaded;
 using test::solve_text;
 
-Run solve_file(const std::string& path, std::vector<std::string> prune = {"auto"}, double sigma = 1e-4) {
-  return solve_loaded(formulate::load_case(kSource + "/" + path), std::move(prune), sigma);
+Run solve_file(const std::string& path, const std::string& prune = "auto", double sigma = 1e-4) {
+  return solve_loaded(formulate::load_case(kSource + "/" + path), prune, sigma);
 }
 
 std::string polynomial_case(const std::string& variables, const std::string& equations) {
@@ -67,7 +67,7 @@ std::string load_error(const std::string& toml, int* line = nullptr) {
 }  // namespace
 
 TEST_CASE("a system in angles gives the certified roots of its hand-lifted twin", "[functions]") {
-  const Run angles = solve_file("cases/polynomial/kin-angles.toml", {"hc4", "newton"}, 1e-6);
+  const Run angles = solve_file("cases/polynomial/kin-angles.toml", "hc4,newton", 1e-6);
   const Run twin = solve_text(polynomial_case(
       R"~({ name = "c1", domain = [-1, 1] }, { name = "s1", domain = [-1, 1] },
          { name = "c2", domain = [-1, 1] }, { name = "s2", domain = [-1, 1] })~",
@@ -105,7 +105,7 @@ TEST_CASE("kin1 in joint angles: the 16 roots of the lifted kin1, one to one", "
   text << in.rdbuf();
   std::string lifted = text.str();
   for (size_t at; (at = lifted.find("-1e8, 1e8")) != std::string::npos;) lifted.replace(at, 9, "-1, 1");
-  const Run twin = solve_loaded(formulate::load_case_text(lifted, "kin1-unit.toml"), {"auto"}, 1e-4);
+  const Run twin = solve_loaded(formulate::load_case_text(lifted, "kin1-unit.toml"), "auto", 1e-4);
   REQUIRE(angles.v.exact);
   REQUIRE(twin.v.exact);
   REQUIRE(angles.roots.size() == 16);

@@ -38,7 +38,7 @@ Run run_case(const std::string& path, const std::string& prune, double sigma, bo
   solve::RunOptions o;
   o.progress = false;
   o.params.sigma = sigma;
-  o.strategy.contractors = solve::parse_strategy_list(prune);
+  o.strategy.prune = solve::Strategy::parse(prune);
   o.strategy.arith = rigorous ? Arith::verified : Arith::float_unverified;
   s.r = solve::solve_case(*s.c.formulation, o);
   s.v = verify::verify_case(*s.c.formulation, s.r);
@@ -261,7 +261,7 @@ TEST_CASE("hard: a 6R loop with a 1e-7 twist stays honest when stopped early", "
   o.progress = false;
   o.params.sigma = 1e-1;
   o.params.max_boxes = 4;
-  o.strategy.contractors = {"hc4", "lp"};
+  o.strategy.prune = solve::Strategy::parse("hc4,lp");
   solve::CaseResult r = solve::solve_case(*c.formulation, o);
   verify::VerifyReport v = verify::verify_case(*c.formulation, r);
   CHECK_FALSE(r.complete);

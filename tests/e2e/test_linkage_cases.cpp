@@ -65,7 +65,7 @@ TEST_CASE("rigid 6R: 16 distinct poses, each a loop closure, certified and exact
   formulate::LoadedCase c = formulate::load_case(path("cases/linkages/6r-rigid.toml"));
   solve::RunOptions o;
   o.progress = false;
-  o.strategy.contractors = {"lp"};
+  o.strategy.prune = solve::Strategy::parse("lp");
   auto r = solve::solve_case(*c.formulation, o);
   REQUIRE(r.complete);
   // Table I, first column (0.0175 as written).
@@ -101,7 +101,7 @@ TEST_CASE("cyclohexane: the chairs are certified roots inside solution boxes, th
   formulate::LoadedCase c = formulate::load_case(path("cases/linkages/cyclohexane.toml"));
   solve::RunOptions o;
   o.progress = false;
-  o.strategy.contractors = {"lp"};
+  o.strategy.prune = solve::Strategy::parse("lp");
   o.params.sigma = 0.1;
   o.params.rho = 0.95;
   auto r = solve::solve_case(*c.formulation, o);

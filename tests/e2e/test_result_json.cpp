@@ -32,7 +32,7 @@ Written solve_and_write(const std::string& path, double sigma) {
   solve::RunOptions o;
   o.progress = false;
   o.params.sigma = sigma;
-  o.strategy.contractors = solve::parse_strategy_list("trapezoid");
+  o.strategy.prune = solve::Strategy::parse("trapezoid");
   const solve::CaseResult r = solve::solve_case(*w.c.formulation, o);
   w.v = verify::verify_case(*w.c.formulation, r);
   w.j = report::result_json(w.c.name, w.c.file, *w.c.formulation, o, r);
@@ -149,7 +149,7 @@ TEST_CASE("json: LPs per box and microseconds per LP agree with the LP contracto
   auto c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/linkages/6r-rigid.toml");
   solve::RunOptions o;
   o.progress = false;
-  o.strategy.contractors = solve::parse_strategy_list("hc4,lp");
+  o.strategy.prune = solve::Strategy::parse("hc4,lp");
   o.params.max_boxes = 40;
   const solve::CaseResult r = solve::solve_case(*c.formulation, o);
   const json j = report::result_json(c.name, c.file, *c.formulation, o, r);

@@ -5,7 +5,7 @@
 #include "solve/search.hpp"
 #include "solve/solve_case.hpp"
 #include "solve/share.hpp"
-#include "solve/strategy.hpp"
+#include "solve/pruning.hpp"
 
 #include <mutex>
 #include <thread>
@@ -18,10 +18,10 @@ using namespace linkbox;
 
 namespace {
 
-std::vector<Box> certified_roots(const formulate::LoadedCase& c, const std::vector<std::string>& prune) {
+std::vector<Box> certified_roots(const formulate::LoadedCase& c, const std::string& prune) {
   solve::RunOptions o;
   o.progress = false;
-  o.strategy.contractors = prune;
+  o.strategy.prune = solve::Strategy::parse(prune);
   auto r = solve::solve_case(*c.formulation, o);
   REQUIRE(r.complete);
   auto v = verify::verify_case(*c.formulation, r);
@@ -35,16 +35,16 @@ std::vector<Box> certified_roots(const formulate::LoadedCase& c, const std::vect
 }  // namespace
 
 TEST_CASE("strategies agree on the certified roots of the bundled cases", "[strategies][slow]") {
-  const std::vector<std::pair<std::string, std::vector<std::vector<std::string>>>> runs = {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> runs = {
       // "auto" first: it must find every root that a fixed strategy certifies, and no other.
-      {"cases/spherical/wrist.toml", {{"auto"}, {"trapezoid"}, {"trapezoid", "newton"}, {"hc4", "newton"}, {"lp"}, {"hc4", "lp"}}},
-      {"cases/spherical/agile-eye.toml", {{"auto"}, {"trapezoid"}, {"trapezoid", "newton"}, {"trapezoid", "lp"}}},
-      {"cases/polynomial/circle-line.toml", {{"auto"}, {"hc4"}, {"newton"}, {"lp"}, {"hc4", "lp"}}},
-      {"cases/polynomial/planted-cubic.toml", {{"auto"}, {"hc4"}, {"newton"}, {"hc4", "lp"}, {"acid", "newton"}}},
-      {"cases/benchmarks/kin1.toml", {{"auto"}, {"hc4", "newton"}, {"hc4", "newton", "/", "lp"}, {"hc4", "acid", "newton"}}},
-      {"cases/benchmarks/cyclohexan3d.toml", {{"auto"}, {"hc4", "newton"}, {"hc4", "lp"}, {"hc4", "acid", "newton"}}},
-      {"cases/benchmarks/caprasse.toml", {{"auto"}, {"hc4", "acid", "newton"}}},
-      {"cases/linkages/6r-rigid.toml", {{"auto"}, {"hc4", "/", "newton"}, {"hc4", "acid", "newton"}}},
+      {"cases/spherical/wrist.toml", {"auto", "trapezoid", "trapezoid,newton", "hc4,newton", "lp", "hc4,lp"}},
+      {"cases/spherical/agile-eye.toml", {"auto", "trapezoid", "trapezoid,newton", "trapezoid,lp"}},
+      {"cases/polynomial/circle-line.toml", {"auto", "hc4", "newton", "lp", "hc4,lp"}},
+      {"cases/polynomial/planted-cubic.toml", {"auto", "hc4", "newton", "hc4,lp", "acid,newton"}},
+      {"cases/benchmarks/kin1.toml", {"auto", "hc4,newton", "hc4,newton/lp", "hc4,acid,newton"}},
+      {"cases/benchmarks/cyclohexan3d.toml", {"auto", "hc4,newton", "hc4,lp", "hc4,acid,newton"}},
+      {"cases/benchmarks/caprasse.toml", {"auto", "hc4,acid,newton"}},
+      {"cases/linkages/6r-rigid.toml", {"auto", "hc4/newton", "hc4,acid,newton"}},
   };
   for (auto& [file, strategies] : runs) {
     formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + file);
@@ -68,7 +68,7 @@ TEST_CASE("each contractor reports its own work, LPs included", "[strategies]") 
   formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/polynomial/planted-cubic.toml");
   solve::RunOptions o;
   o.progress = false;
-  o.strategy.contractors = {"hc4", "lp"};
+  o.strategy.prune = solve::Strategy::parse("hc4,lp");
   auto r = solve::solve_case(*c.formulation, o);
   REQUIRE(r.complete);
   REQUIRE(r.counters.size() == 2);
@@ -123,11 +123,11 @@ TEST_CASE("a search cut at work limits stops at the same box on any number of th
   const formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/linkages/6r-rigid.toml");
   const formulate::SubProblem sub = c.formulation->subproblem(0);
   solve::StrategyOptions so;
-  so.contractors = {"hc4", "newton", "/", "lp"};
+  so.prune = solve::Strategy::parse("hc4,newton/lp");
   solve::Params p;
   p.rho = 0.8;
   auto states = [&](int threads) {
-    solve::Strategy strategy = solve::make_strategy(so, sub);
+    solve::Pruning strategy = solve::make_pruning(so.prune, so, sub);
     solve::Budget budget(p);
     solve::Search search(sub.system.domain(), *strategy.sequence, sub.split_dims, p, budget);
     std::vector<solve::SearchState> out;
@@ -177,8 +177,8 @@ struct ThreadLending final : solve::Sharing {
     if (!wanted && ++calls % 7 == 0) wanted = true;
     return wanted;
   }
-  bool give(size_t, const std::vector<std::string>&, solve::Lender&) override { return false; }
-  bool lend(size_t i, const std::vector<std::string>& strategy, solve::Lender& search) override {
+  bool give(size_t, const solve::Strategy&, solve::Lender&) override { return false; }
+  bool lend(size_t i, const solve::Strategy& strategy, solve::Lender& search) override {
     wanted = false;
     auto node = search.lend();
     if (!node) return false;

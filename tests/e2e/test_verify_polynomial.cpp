@@ -14,12 +14,12 @@ using namespace linkbox;
 
 namespace {
 
-verify::VerifyReport solve_text(const std::string& toml, std::vector<std::string> prune = {"hc4", "newton"},
+verify::VerifyReport solve_text(const std::string& toml, const std::string& prune = "hc4,newton",
                                 double sigma = 1e-6, verify::CheckOutcome* checked = nullptr) {
   formulate::LoadedCase c = formulate::load_case_text(toml, "inline.toml");
   solve::RunOptions o;
   o.progress = false;
-  o.strategy.contractors = std::move(prune);
+  o.strategy.prune = solve::Strategy::parse(prune);
   o.params.sigma = sigma;
   auto r = solve::solve_case(*c.formulation, o);
   REQUIRE(r.complete);
@@ -94,7 +94,7 @@ TEST_CASE("a polynomial case goes through the L/P/H path (safe and exact LP) and
   for (auto backend : {prune::lp::LpBackend::safe, prune::lp::LpBackend::exact}) {
     solve::RunOptions o;
     o.progress = false;
-    o.strategy.contractors = {"lp"};
+    o.strategy.prune = solve::Strategy::parse("lp");
     o.strategy.lp = backend;
     o.params.sigma = 1e-3;
     auto res = solve::solve_case(*c.formulation, o);

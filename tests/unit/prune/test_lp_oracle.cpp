@@ -174,7 +174,7 @@ std::vector<RecordedLp> record_search(const std::string& case_file, double sigma
     formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + case_file);
     solve::RunOptions o;
     o.progress = false;
-    o.strategy.contractors = {"lp"};
+    o.strategy.prune = solve::Strategy::parse("lp");
     o.params.sigma = sigma;
     o.params.max_boxes = max_boxes;
     solve::solve_case(*c.formulation, o);  // the solvers (and their recorders) end with it

@@ -1,0 +1,34 @@
+#pragma once
+// `linkbox solve` and `linkbox resume`: their flags, the settings they resolve, and the run.
+#include "solve/solve_case.hpp"
+#include "verify/certify_case.hpp"
+
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace linkbox::cli {
+
+class RunMode;
+
+struct SolveCommand {
+  std::string case_file, json_out, prune, checkpoint, record_tree;
+  solve::RunOptions options;
+  bool quiet = false, no_verify = false;
+  std::string resume;  // resume: the checkpoint to go on from
+  CLI::App* app = nullptr;
+  bool given(const char* flag) const;  // on the command line
+};
+
+// The flags of both commands, into `s` (s.app is `app`).
+void add_solve_flags(CLI::App& app, SolveCommand& s);
+
+// Loads the case, resolves the settings (flags, the case's [solve] table, the defaults; or the
+// checkpoint's), then runs and reports it as `mode` does. Returns the exit code.
+int run_solve(SolveCommand& cmd, const RunMode& mode);
+
+verify::VerifyOptions verify_options(const SolveCommand& cmd);
+
+}  // namespace linkbox::cli

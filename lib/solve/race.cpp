@@ -1,0 +1,151 @@
+#include "solve/race.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace linkbox::solve {
+
+namespace {
+
+// After the first turn, the leader's share of a turn is 1, every other candidate's this.
+constexpr double kRaceShare = 0.125;
+constexpr double kFirstTurn = 4000;
+
+// The projection flatters the LP candidate early on: its first LPs remove whole slabs of the
+// box. The lead passes to a costlier candidate only when it is projected this many times
+// cheaper than the first.
+constexpr double kLeadMargin = 2;
+
+// Progress is the share of the search tree resolved (Search::tree_done), not of the volume:
+// contraction removes most of the volume in the first boxes, while the work gathers around
+// the solution set, where little volume is left. On volume, a propagation search that had
+// cleared nearly all of a curve's neighbourhood looked nearly done and kept the lead (see
+// papers/decisions/solve-driver.md).
+double projected(const Search& s) { return s.work() / std::max(s.tree_done(), 1e-9); }
+
+}  // namespace
+
+std::unique_ptr<Racer> make_racer(const formulate::Formulation& formulation, size_t i, const formulate::SubProblem& sub,
+                                  const Strategy& strategy, const StrategyOptions& options) {
+  return std::unique_ptr<Racer>(
+      new Racer{make_pruning(strategy, options, sub), NaturalCertifier(formulation, i), nullptr});
+}
+
+Race::Race(std::vector<std::unique_ptr<Racer>> racers, Sharing* lending)
+    : racers_(std::move(racers)), at_{kFirstTurn, 0, 0, -1, -1}, lending_(lending) {}
+
+Race::~Race() {
+  if (lending_) lending_->end_lending();
+}
+
+void Race::resume(size_t i, const SubCheckpoint& saved) {
+  if (saved.searches.size() != racers_.size())
+    throw std::invalid_argument("the checkpoint's sub-problem " + std::to_string(i) + " ran " +
+                                std::to_string(saved.searches.size()) + " strategies, this run " +
+                                std::to_string(racers_.size()));
+  for (size_t k = 0; k < racers_.size(); ++k) {
+    racers_[k]->search->set_state(saved.searches[k]);
+    racers_[k]->pruning.sequence->set_counters(saved.counters[k]);
+  }
+  at_ = saved.race;
+}
+
+SubCheckpoint Race::checkpoint() const {
+  SubCheckpoint c;
+  c.phase = SubCheckpoint::Phase::searching;
+  for (auto& r : racers_) {
+    c.searches.push_back(r->search->state());
+    c.counters.push_back(r->pruning.sequence->counters());
+  }
+  c.race = at_;
+  return c;
+}
+
+Search& Race::run_turn(int threads) {
+  Search& search = *racers_[at_.next]->search;
+  if (racers_.size() == 1) {
+    search.run(threads);
+  } else {
+    if (at_.target < 0) start_turn();
+    // Every thread on this candidate's turn: the turn still ends where one thread ends it
+    // (look-ahead mode, lookahead.hpp), so the race and its winner do not depend on
+    // the thread count.
+    search.run(threads, at_.target);
+  }
+  if (search.complete()) at_.winner = static_cast<int>(at_.next);
+  return search;
+}
+
+void Race::start_turn() {
+  if (at_.next == 0 && at_.turn > kFirstTurn) pick_lead();
+  if (lender_ >= 0 && at_.lead != static_cast<size_t>(lender_)) {
+    // The lender lost the lead: its lent boxes' searches would serve a likely loser. It
+    // takes them back (it may never need them); the new leader lends from now on.
+    lending_->recall();
+    racers_[lender_]->search->unlend();
+    lender_ = -1;
+  }
+  at_.target = target_of(at_.next);
+}
+
+void Race::next_turn() {
+  at_.target = -1;
+  if (++at_.next == racers_.size()) {
+    at_.next = 0;
+    at_.turn *= 2;
+  }
+}
+
+void Race::pick_lead() {
+  at_.lead = 0;
+  for (size_t k = 1; k < racers_.size(); ++k)
+    if (projected(*racers_[k]->search) * kLeadMargin < projected(*racers_[at_.lead]->search)) at_.lead = k;
+}
+
+// First turn: every candidate gets the share (a costly first box of one should not delay
+// another that finishes at once: the rigid 6R's LP candidate).
+double Race::target_of(size_t k) const {
+  const double share = k == at_.lead && at_.turn > kFirstTurn ? 1 : kRaceShare;
+  return racers_[k]->search->work() + at_.turn * share;
+}
+
+bool Race::lend_asked(size_t k) {
+  const bool may_lend = lender_ < 0 ? k == at_.lead && at_.turn > kFirstTurn : static_cast<int>(k) == lender_;
+  return lending_ && may_lend && lending_->asked();
+}
+
+void Race::lend(size_t subproblem) {
+  Racer& r = *racers_[at_.next];
+  if (lending_ && lending_->asked() && lending_->lend(subproblem, r.pruning.strategy, *r.search))
+    lender_ = static_cast<int>(at_.next);
+}
+
+void Race::end_lending() {
+  if (lending_) lending_->end_lending();
+  if (lender_ < 0 || at_.winner != lender_) return;
+  Racer& r = *racers_[lender_];
+  auto counters = r.pruning.sequence->counters();
+  const auto delivered = r.search->delivered_counters();
+  for (size_t k = 0; k < counters.size() && k < delivered.size(); ++k) counters[k] += delivered[k];
+  r.pruning.sequence->set_counters(std::move(counters));
+}
+
+Racer& Race::best() {
+  if (over()) return *racers_[at_.winner];
+  size_t best = 0;
+  for (size_t k = 1; k < racers_.size(); ++k)
+    if (racers_[k]->search->volume_done() > racers_[best]->search->volume_done()) best = k;
+  return *racers_[best];
+}
+
+std::vector<std::pair<std::string, double>> Race::record() {
+  std::vector<std::pair<std::string, double>> r;
+  if (!over()) return r;
+  const Racer& winner = best();
+  for (auto& c : racers_)
+    if (c.get() != &winner) r.push_back({c->pruning.strategy.text(), c->search->work()});
+  if (racers_.size() > 1) r.push_back({winner.pruning.strategy.text(), winner.search->work()});
+  return r;
+}
+
+}  // namespace linkbox::solve

@@ -1,0 +1,50 @@
+#include "solve/summary.hpp"
+
+#include <algorithm>
+
+namespace linkbox::solve {
+
+namespace {
+
+// By name: sub-problems may have run different strategies ("auto" chooses per sub-problem).
+void add_counters(CaseResult& result, const SubResult& s) {
+  size_t k = 0;
+  for (auto& stage : s.strategy.stages())
+    for (ContractorKind kind : stage) {
+      const std::string name = name_of(kind);
+      auto at = std::find(result.contractor_names.begin(), result.contractor_names.end(), name);
+      if (at == result.contractor_names.end()) {
+        result.contractor_names.push_back(name);
+        result.counters.emplace_back();
+        at = result.contractor_names.end() - 1;
+      }
+      if (k < s.counters.size()) result.counters[at - result.contractor_names.begin()] += s.counters[k];
+      ++k;
+    }
+}
+
+}  // namespace
+
+void summarise(CaseResult& result, const RunOptions& options, const Budget& budget) {
+  const size_t n = result.subproblems.size();
+  for (auto& s : result.subproblems) {
+    result.total += s.stats;
+    result.complete = result.complete && s.complete;
+    result.pending_boxes += static_cast<long>(s.pending.size());
+    result.volume_left += s.volume_left / static_cast<double>(n);
+    add_counters(result, s);
+  }
+  // What ran: the first sub-problem's strategy ("auto" resolved).
+  for (auto& s : result.subproblems)
+    if (!s.strategy.empty()) {
+      result.strategy = s.strategy;
+      result.bisect = s.bisect;
+      result.rho = s.rho;
+      break;
+    }
+  result.rigorous = options.strategy.arith == Arith::verified;
+  if (!result.complete) result.stop_reason = budget.reason();
+  result.seconds = budget.elapsed();
+}
+
+}  // namespace linkbox::solve
