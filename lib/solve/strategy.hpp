@@ -4,8 +4,8 @@
 // runs only when the stages before it stall ("hc4,newton/lp": the LP relaxation only where
 // propagation and Newton no longer shrink the box). "auto" chooses from the system's shape.
 #include "formulate/formulation.hpp"
-#include "prune/contractor.hpp"
 #include "prune/lp/lp_solver.hpp"
+#include "prune/sequence.hpp"
 
 #include <string>
 #include <vector>
