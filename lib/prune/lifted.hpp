@@ -14,9 +14,7 @@ class Lifted final : public Contractor {
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override;
   void stop_when(const std::function<bool()>* request) override { inner_->stop_when(request); }
-  long lps_solved() const override { return inner_->lps_solved(); }
-  long lp_iterations() const override { return inner_->lp_iterations(); }
-  LpPaths lp_paths() const override { return inner_->lp_paths(); }
+  void add_work(Counters& counters) const override { inner_->add_work(counters); }
 
  private:
   model::LphSystem lph_;

@@ -86,6 +86,12 @@ std::unique_ptr<Contractor> LpRelaxation::clone() const {
   return std::unique_ptr<Contractor>(new LpRelaxation(system_, backend_));
 }
 
+void LpRelaxation::add_work(Counters& counters) const {
+  counters.lps_solved += lps_solved_;
+  counters.lp_iterations += solver_->iterations();
+  counters.lp_paths += solver_->paths();
+}
+
 Outcome LpRelaxation::contract(Box& box) {
   Box work = box;
   if (!propagate_products(*system_, work)) return Outcome::empty;

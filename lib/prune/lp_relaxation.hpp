@@ -29,9 +29,8 @@ class LpRelaxation final : public Contractor {
   std::unique_ptr<Contractor> clone() const override;
 
   void stop_when(const std::function<bool()>* request) override { stop_ = request; }
-  long lps_solved() const override { return lps_solved_; }
-  long lp_iterations() const override { return solver_->iterations(); }
-  LpPaths lp_paths() const override { return solver_->paths(); }
+  void add_work(Counters& counters) const override;
+  long lps_solved() const { return lps_solved_; }  // a min or a max each
 
  private:
   LpRelaxation(std::shared_ptr<const model::LphSystem> system, lp::LpBackend backend);

@@ -3,7 +3,7 @@
 // contractors (new contractors register there and nowhere else).
 #include "formulate/formulation.hpp"
 #include "interval/interval.hpp"
-#include "prune/contractor.hpp"
+#include "prune/sequence.hpp"
 #include "prune/lp/lp_solver.hpp"
 #include "solve/strategy.hpp"
 

@@ -4,7 +4,7 @@
 // to a floor: the certified answer should not depend on the user's sigma. What the refinement
 // proves empty is dropped, what it certifies replaces the box, what is left stays.
 #include "formulate/formulation.hpp"
-#include "prune/contractor.hpp"
+#include "prune/sequence.hpp"
 #include "solve/bisector.hpp"
 #include "solve/search.hpp"
 #include "solve/certifier.hpp"

@@ -2,7 +2,7 @@
 // Algorithm 1 of the iterated-LP paper (the same scheme as Section 4 of the spherical one):
 // shrink a box until it is empty, small (a solution box) or no longer shrinks by more than
 // rho, then bisect it (its widest split dimension, or as a Bisector chooses).
-#include "prune/contractor.hpp"
+#include "prune/sequence.hpp"
 #include "solve/bisector.hpp"
 #include "solve/box_log.hpp"
 #include "solve/budget.hpp"

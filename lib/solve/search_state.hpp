@@ -2,7 +2,7 @@
 // A search's state and result as plain data: what a checkpoint stores (solve/checkpoint.hpp),
 // what one process hands another (solve/share.hpp), and what a finished search returns.
 #include "interval/box.hpp"
-#include "prune/contractor.hpp"
+#include "prune/sequence.hpp"
 #include "solve/result.hpp"
 
 #include <string>

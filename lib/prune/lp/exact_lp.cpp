@@ -41,12 +41,9 @@ LpBound ExactLp::solve(int col, double sense) {
   const ExactSimplex::Result r = exact_.solve(col, sense, cols_, rows_, kMaxPivots);
   paths_.pivots += r.pivots;
   // A consistency guard: CLP's duals give a rigorous lower bound on min sense * x[col]
-  // (Neumaier-Shcherbina, safe_lp.hpp) that the exact optimum rounded down can never be below.
-  // The oracle (tests/test_lp_oracle.cpp) caught ExactSimplex below it on the agile eye (13 of
-  // 13225 solves, e.g. -0.6307 for a minimum CGAL puts at -0.5562): such an answer goes to
-  // CGAL. The likely cause was the fraction-free LU eliminating an entry twice (fixed in
-  // 804dee1; since then the oracle's replay of the agile eye takes no CGAL fall-back at all,
-  // 3 508 before). The guard stays: it costs one Neumaier-Shcherbina bound from CLP's duals.
+  // (Neumaier-Shcherbina, safe_lp.hpp) that the exact optimum rounded down can never be below;
+  // an answer below it goes to CGAL. It costs one such bound (its history:
+  // papers/decisions/exact-lp.md).
   if (r.kind == ExactSimplex::Result::optimal && finish == ClpCore::Finish::optimal) {
     const LpBound safe = safe_bound_after(clp_, finish, col, sense);
     if (safe.status == LpStatus::infeasible || (safe.status == LpStatus::bounded && r.down < safe.value)) {

@@ -28,15 +28,11 @@ class ExactLp final : public LpSolver {
   long iterations() const override { return clp_.iterations(); }
   LpPaths paths() const override { return paths_; }
 
-  // Exact pivots allowed from CLP's basis before CGAL takes over. One exact pivot (a
-  // fraction-free refactorisation and three solves, k ~ 45) costs ~0.3 ms on the rigid 6R, a
-  // CGAL solve 50 ms to seconds: with Bland's rule from pivot 50 (exact_simplex.cpp) the
-  // longest repair seen took ~700 pivots and almost every repair ends well below this.
+  // Exact pivots allowed from CLP's basis before CGAL takes over: an exact pivot costs far
+  // less than a CGAL solve (figures in papers/decisions/exact-lp.md).
   static constexpr int kMaxPivots = 400;
-  // CLP's tolerances for the exact backend (CLP's default 1e-7 for both). Measured on the
-  // rigid 6R's LPs: primal 1e-11 took the bases CLP calls optimal from 2/3 to 1/2 primal
-  // infeasible in rationals (a violation ~1e-10 is a real one CLP could pivot away cheaply;
-  // the ~1e-17 ones at near-degenerate vertices stay) and cut the exact time by ~30%.
+  // CLP's tolerances for the exact backend, tighter than CLP's defaults, so that fewer of the
+  // bases CLP calls optimal need exact repairs (papers/decisions/exact-lp.md).
   static constexpr double kPrimalTolerance = 1e-11, kDualTolerance = 1e-10;
 
  private:

@@ -11,10 +11,16 @@
 // Variables are the columns x_j and the row activities r_i = a_i . x, each with its bounds.
 // With k basic columns the basis fixes k nonbasic rows, and the basic columns solve the
 // k x k system A[nonbasic rows, basic columns] x_B = r_N - A[nonbasic rows, nonbasic cols] x_N;
-// the basic rows follow by products. k is at most the number of columns (67 on the rigid
-// 6R), far below the ~200 rows of the full basis, and the system is sparse.
+// the basic rows follow by products. k is at most the number of columns, far below the
+// number of rows of the full basis, and the system is sparse.
 //
-// GMP stays in the .cpp (the data lives behind a pointer).
+// Integers, not rationals: the LP's doubles are integers times powers of two, so each row is
+// scaled to integers (dyadic.hpp) and the basis systems are solved fraction-free
+// (integer_lu.hpp): every division is exact, a solution comes out as integers over one common
+// denominator, and signs and comparisons need no gcd (papers/decisions/exact-lp.md).
+//
+// GMP stays in the .cpp files (the data lives behind a pointer); the solve itself is
+// exact_simplex_run.hpp.
 #include "prune/lp/clp_core.hpp"
 #include "prune/lp/linear_program.hpp"
 
@@ -47,9 +53,15 @@ class ExactSimplex {
     // The starting basis as found: basic columns, nonbasic variables moved to their other
     // bound for dual feasibility, violated bounds after that, wrong-signed reduced costs left.
     int size = 0, flips = 0, primal_violations = 0, dual_violations = 0;
-    // Why it failed: 0 none, 1 not a vertex (free nonbasic or wrong basis size), 2 singular
-    // basis, 3 primal and dual infeasible at once, 4 pivot budget spent, 5 unbounded ray.
-    int failure = 0;
+    // Why it failed (numbered for diagnostics that count them).
+    enum class Failure {
+      none = 0,
+      not_a_vertex = 1,                // a free nonbasic variable, or not a basis's size
+      singular_basis = 2,
+      primal_and_dual_infeasible = 3,  // again, after the violated bounds were moved out once
+      pivot_budget = 4,                // `max_pivots` spent
+      unbounded = 5,                   // a primal simplex ray (only with infinite bounds)
+    } failure = Failure::none;
     int relaxations = 0;  // times violated bounds were moved out for primal pivots
     // infeasible: row multipliers (rounded to doubles) of the dual simplex row that found
     // it, a candidate Farkas certificate (either sign) for proves_infeasible.
@@ -66,13 +78,9 @@ class ExactSimplex {
   bool proves_infeasible(std::span<const double> y) const;
 
  private:
-  struct Data;
+  struct Data;  // the LP in scaled integers and the workspace (exact_simplex_data.hpp)
+  class Run;    // one solve, phase by phase (exact_simplex_run.hpp)
   std::unique_ptr<Data> d_;
 };
-
-// Test hook for the fraction-free LU inside: solves M x = b (or M^T x = b) for the k x k
-// integer matrix M (row-major), returning x rounded to doubles; empty when M is singular.
-std::vector<double> integer_lu_solve(int k, const std::vector<long>& matrix, const std::vector<long>& b,
-                                     bool transpose);
 
 }  // namespace linkbox::prune::lp

@@ -4,6 +4,7 @@
 #include "prune/lp/clp_core.hpp"
 #include "prune/lp/exact_lp.hpp"
 #include "prune/lp/exact_simplex.hpp"
+#include "prune/lp/integer_lu.hpp"
 #include "prune/lp/lp_record.hpp"
 
 #include <catch2/catch.hpp>
@@ -80,7 +81,7 @@ TEST_CASE("exact basis check on recorded LPs: diagnostics", "[.][lp_diag]") {
         std::cout << "exact infeasible (certificate " << (proved ? "checked" : "refused") << "); cgal status " << int(e.status) << " value " << e.down << " at lp " << (&rec - lps.data())
                   << " solve " << (&s - rec.solves.data()) << "\n";
       }
-      else ++failed, ++reasons[r.failure];
+      else ++failed, ++reasons[static_cast<int>(r.failure)];
       if (std::getenv("LINKBOX_LP_DIAG_VERBOSE"))
         std::cout << "k=" << r.size << " flips=" << r.flips << " primal_bad=" << r.primal_violations << " dual_bad=" << r.dual_violations
                   << " pivots=" << r.pivots << " kind=" << r.kind << "\n";
