@@ -6,6 +6,13 @@ box, and a model of 64-1024 ranks that replays the search tree a run records.
   scaling.py model   --linkbox build/linkbox [--out DIR]              records trees, replays them
   scaling.py verify  --linkbox build/linkbox [--runs 3] [--out DIR]   verification over ranks -> DIR/scaling-verify.json
   scaling.py report  [--out DIR]                                      the tables of scaling.md
+  scaling.py table   --linkbox build/linkbox [--cores N] [--runs 1]   issue 30's table on this machine
+
+`table` is the one command for any machine: --threads N and mpirun -np N for N = 1, 2, 4, ...
+up to the cores (default: all), on four-loop, eco10 and bicyclohexane, as a Markdown table
+of search wall time (the JSON's stats.seconds, verification on, median of --runs), with the
+speed-up at the largest N. MPI rows need mpirun (on one node without ssh the script sets
+OMPI_MCA_plm_rsh_agent=false).
 
 The model replays each recorded box with its measured time and the protocol of
 lib/distributed/mpi_solve.cpp: idle slots get sub-problems in index order, then the oldest
@@ -366,9 +373,53 @@ def report(args):
         print(f"| {name} rank 0 load | | | " + " | ".join(f"{r['rank0_load']:.2f}" for r in c["rows"]) + " |")
 
 
+# Issue 30's table: label, case, flags, "threads" or "mpi".
+TABLE = [
+    ("four-loop `--threads N`", "cases/spherical/four-loop.toml", [], "threads"),
+    ("four-loop `mpirun -np N`", "cases/spherical/four-loop.toml", [], "mpi"),
+    ("eco10 `--threads N` (auto)", "cases/benchmarks/eco10.toml", [], "threads"),
+    ("bicyclohexane `--threads N` (auto)", "cases/linkages/bicyclohexane.toml", [], "threads"),
+    ("bicyclohexane `mpirun -np N --prune hc4,newton/lp`", "cases/linkages/bicyclohexane.toml",
+     ["--prune", "hc4,newton/lp"], "mpi"),
+    ("bicyclohexane `mpirun -np N` (auto)", "cases/linkages/bicyclohexane.toml", [], "mpi"),
+]
+
+
+def search_seconds(cmd, out):
+    """The search's wall time of one run (any exit code: limits and unresolved clusters end
+    non-zero), or None when it wrote no result."""
+    if os.path.exists(out):
+        os.remove(out)
+    subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=1800)
+    return json.load(open(out))["stats"]["seconds"] if os.path.exists(out) else None
+
+
+def table(args):
+    cores = args.cores or os.cpu_count()
+    counts = [n for n in (1, 2, 4, 8, 16, 32, 64, 128, 256) if n <= cores]
+    have_mpi = subprocess.run(["which", "mpirun"], capture_output=True).returncode == 0
+    os.environ.setdefault("OMPI_MCA_plm_rsh_agent", "false")
+    print(f"| run | " + " | ".join(str(n) for n in counts) + f" | speed-up at {counts[-1]} |")
+    print("|---|" + "---|" * (len(counts) + 1))
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "r.json")
+        for label, case, flags, mode in TABLE:
+            if mode == "mpi" and not have_mpi:
+                continue
+            cells = []
+            for n in counts:
+                base = [args.linkbox, "solve", os.path.join(ROOT, case), "--quiet", "--json", out] + flags
+                cmd = base + ["--threads", str(n)] if mode == "threads" else (mpirun(n) if n > 1 else []) + base
+                times = [t for t in (search_seconds(cmd, out) for _ in range(args.runs)) if t is not None]
+                cells.append(statistics.median(times) if times else None)
+            shown = " | ".join("-" if t is None else f"{t:.2f}" for t in cells)
+            speedup = f"{cells[0] / cells[-1]:.1f}x" if cells[0] and cells[-1] else "-"
+            print(f"| {label} | {shown} | {speedup} |", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("what", choices=["measure", "model", "verify", "report"])
+    ap.add_argument("what", choices=["measure", "model", "verify", "report", "table"])
     ap.add_argument("--linkbox", default=os.path.join(ROOT, "build", "linkbox"))
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--out", default=os.path.dirname(os.path.abspath(__file__)))
@@ -376,8 +427,9 @@ def main():
     ap.add_argument("--skip", help="not the cases whose name contains this")
     ap.add_argument("--append", action="store_true", help="add to the runs already measured")
     ap.add_argument("--hop", type=float, default=3e-4, help="seconds per message hop (polling + MPI latency)")
+    ap.add_argument("--cores", type=int, help="table: the largest N (default: every core)")
     args = ap.parse_args()
-    {"measure": measure, "model": model, "verify": verify, "report": report}[args.what](args)
+    {"measure": measure, "model": model, "verify": verify, "report": report, "table": table}[args.what](args)
 
 
 if __name__ == "__main__":
