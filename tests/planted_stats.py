@@ -516,7 +516,7 @@ FIELDS = ["seed", "kind", "mode", "unknowns", "planted", "true_count", "cpu", "w
 def defect(row):
     """Verified-mode defects: a lost planted root in a complete run, a wrong exact count, a crash."""
     return row["mode"] == "verified" and (
-        (row["lost"] and row["complete"]) or row["claim_wrong"] or row["exit"] not in (0,))
+        (row["lost"] and row["complete"]) or row["claim_wrong"] or row["exit"] not in (0, 4, 5))
 
 
 def cmd_run(a):
