@@ -76,9 +76,9 @@ def comparable(j):
 def same(mpi, linkbox, tmp, case, flags):
     one, many = os.path.join(tmp, "one.json"), os.path.join(tmp, "many.json")
     code, text = solve(mpi, linkbox, case, flags, one)
-    check(code == 0, f"one process solves {case} {' '.join(flags)} (exit {code})")
+    check(code in (0, 4, 5), f"one process solves {case} {' '.join(flags)} (exit {code})")
     code, text = solve(mpi, linkbox, case, flags, many, ranks=3)
-    check(code == 0, f"3 ranks solve it (exit {code}){'' if code == 0 else ': ' + text[-2000:]}")
+    check(code in (0, 4, 5), f"3 ranks solve it (exit {code}){'' if code in (0, 4, 5) else ': ' + text[-2000:]}")
     if failures:
         return
     a, b = comparable(load(one)), comparable(load(many))
@@ -101,7 +101,7 @@ def limit(mpi, linkbox, tmp):
     code, _ = solve(mpi, linkbox, case, [], full)
     check(code == 0, "one process solves the agile eye")
     code, text = solve(mpi, linkbox, case, ["--max-boxes", "200"], part, ranks=3)
-    check(code == 0, f"a box limit is not an error (exit {code})")
+    check(code == 5, f"a box limit ends as incomplete, exit 5 (exit {code})")
     if failures:
         return
     j, f = load(part), load(full)

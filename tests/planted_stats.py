@@ -482,7 +482,7 @@ def run_one(linkbox, sysd, mode, time_limit, work):
     row = dict(seed=sysd["seed"], kind=sysd["kind"], mode=mode, unknowns=sysd["unknowns"], planted=len(sysd["roots"]),
                true_count="" if sysd["count"] is None else sysd["count"], cpu=round(cpu, 4), wall=round(wall, 4),
                exit=p.returncode)
-    if p.returncode != 0 or not os.path.exists(out):
+    if p.returncode not in (0, 4, 5) or not os.path.exists(out):  # 4 unresolved, 5 incomplete
         row.update(complete=0, lost=len(sysd["roots"]), certified=0, claim="", claim_wrong=0,
                    headline="exit %d: %s" % (p.returncode, p.stderr.strip()[:200].replace("\n", " ")),
                    certified_roots=0, clusters=0, solutions=0, search_cpu="")
@@ -516,7 +516,7 @@ FIELDS = ["seed", "kind", "mode", "unknowns", "planted", "true_count", "cpu", "w
 def defect(row):
     """Verified-mode defects: a lost planted root in a complete run, a wrong exact count, a crash."""
     return row["mode"] == "verified" and (
-        (row["lost"] and row["complete"]) or row["claim_wrong"] or row["exit"] not in (0,))
+        (row["lost"] and row["complete"]) or row["claim_wrong"] or row["exit"] not in (0, 4, 5))
 
 
 def cmd_run(a):

@@ -1,10 +1,10 @@
 // The `linkbox` executable: arguments -> options -> load -> solve -> verify -> report.
-// Exit codes: 0 success, 1 internal failure or a failed check, 2 bad input (case file or
-// arguments), 128 + the signal (130 SIGINT, 143 SIGTERM) when interrupted: what was found is
-// still written; under mpirun, 3 when a rank died or an MPI error ended the run.
+// Exit codes: cli/ending.hpp (and docs/cli.md).
+#include "cli/ending.hpp"
 #include "cli/interrupts.hpp"
 #include "cli/run_mode.hpp"
 #include "cli/solve_command.hpp"
+#include "cli/usage.hpp"
 #include "formulate/load.hpp"
 #include "input/input_error.hpp"
 #include "input/to_toml.hpp"
@@ -26,6 +26,13 @@
 using namespace linkbox;
 
 namespace {
+
+// The footer of every help text.
+constexpr char kExitCodes[] =
+  "Exit codes: 0 complete, every cluster settled (an exact count); 4 complete, some cluster or\n"
+  "curve map unresolved; 5 incomplete (a time or box limit); 128+N stopped by signal N (130\n"
+  "Ctrl-C); 2 bad input or usage; 1 internal error; 3 a failed MPI job. Unless 0, the last line\n"
+  "on stderr says what to try next.";
 
 struct CheckCommand {
   std::string result_file, case_file;
@@ -69,7 +76,7 @@ int run_check(const CheckCommand& cmd) {
   for (auto& f : out.failures) std::fprintf(stderr, "FAILED: %s\n", f.c_str());
   if (!out.failures.empty()) {
     std::fprintf(stderr, "%zu of the claims in %s do not hold\n", out.failures.size(), cmd.result_file.c_str());
-    return 1;
+    return cli::exit_failed;
   }
   std::printf("%d certificates re-checked from %s and %s, and the headline, counts and roots recomputed: all hold (%s)\n",
               out.checked, cmd.result_file.c_str(), c.file.c_str(), j.value("headline", "").c_str());
@@ -87,39 +94,45 @@ struct Commands {
 
 void add_solve(CLI::App& app, Commands& c) {
   c.solve_app = app.add_subcommand("solve", "enclose every root of a case in solution boxes");
-  c.solve_app->add_option("case", c.solve.case_file, "case file (TOML; or a peer's .bch or .cuik)")->required();
+  c.solve_app->add_option("case", c.solve.case_file, "case file (TOML; or a peer's .bch or .cuik)")
+      ->required()
+      ->type_name("CASE");
   cli::add_solve_flags(*c.solve_app, c.solve);
-  c.solve_app->footer(R"(Examples:
+  c.solve_app->footer(std::string(R"(Examples:
   linkbox solve cases/linkages/6r-rigid.toml
   linkbox solve cases/linkages/cyclohexane.toml --prune lp --json out.json
   linkbox solve cases/benchmarks/eco9.bch --time-limit 60 --checkpoint eco9.ckpt
   linkbox solve case.toml --arith float        (unverified, for comparison)
 Settings come from the flags, else the case's [solve] table, else the defaults; the summary's
-`settings` line says which. Exit 0 (also when a limit stopped the search: the JSON says
-complete: false), 2 bad input, 1 internal error, 128+N on signal N.)");
+`settings` line says which.
+)" + std::string(kExitCodes)));
 }
 
 void add_resume(CLI::App& app, Commands& c) {
   c.resume_app = app.add_subcommand(
       "resume", "go on with a run saved by --checkpoint; it ends with the boxes an unbroken run gives");
-  c.resume_app->add_option("checkpoint", c.resume.resume, "the checkpoint file")->required();
-  c.resume_app->add_option("--case", c.resume.case_file, "case file (default: the one named in the checkpoint)");
+  c.resume_app->add_option("checkpoint", c.resume.resume, "the checkpoint file")->required()->type_name("CHECKPOINT");
+  c.resume_app->add_option("--case", c.resume.case_file, "case file (default: the one named in the checkpoint)")
+      ->type_name("CASE");
   cli::add_solve_flags(*c.resume_app, c.resume);
-  c.resume_app->footer(R"(Examples:
+  c.resume_app->footer(std::string(R"(Examples:
   linkbox resume eco9.ckpt
   linkbox resume eco9.ckpt --time-limit 600 --json eco9.json
-A checkpoint of another case, or with other search settings, is refused (exit 2).)");
+A checkpoint of another case, or with other search settings, is refused (exit 2).
+)" + std::string(kExitCodes)));
 }
 
 void add_check_and_convert(CLI::App& app, Commands& c) {
   c.check_app = app.add_subcommand("check", "re-check every certificate of a result JSON (no search)");
-  c.check_app->add_option("result", c.check.result_file, "JSON written by solve --json")->required();
-  c.check_app->add_option("--case", c.check.case_file, "case file (default: the one named in the JSON)");
+  c.check_app->add_option("result", c.check.result_file, "JSON written by solve --json")->required()->type_name("OUT.json");
+  c.check_app->add_option("--case", c.check.case_file, "case file (default: the one named in the JSON)")
+      ->type_name("CASE");
   c.convert_app = app.add_subcommand("convert", "write a peer's model (Minibex .bch, CuikSuite .cuik) as a TOML case");
-  c.convert_app->add_option("model", c.convert_file, "the .bch or .cuik file")->required();
+  c.convert_app->add_option("model", c.convert_file, "the .bch or .cuik file")->required()->type_name("MODEL");
   c.check_app->footer(R"(Examples:
   linkbox solve cases/spherical/wrist.toml --json wrist.json && linkbox check wrist.json
-  linkbox check result.json --case my-copy-of-the-case.toml)");
+  linkbox check result.json --case my-copy-of-the-case.toml
+Exit 0 when every claim holds, 1 when one does not, 2 when the result or case cannot be read.)");
   c.convert_app->footer(R"(Examples:
   linkbox convert cases/benchmarks/eco9.bch > eco9.toml
   linkbox convert cases/benchmarks/cyclohexan3d.cuik > cyclohexan3d.toml
@@ -145,10 +158,10 @@ int error_exit_code(const cli::RunMode& mode) {
     throw;
   } catch (const input::InputError& e) {
     if (mode.speaks()) std::fprintf(stderr, "%s\n", e.what());
-    return 2;
+    return cli::exit_bad_input;
   } catch (const std::invalid_argument& e) {
     if (mode.speaks()) std::fprintf(stderr, "linkbox: %s\n", e.what());
-    return 2;
+    return cli::exit_bad_input;
   } catch (...) {
     return mode.internal_error();
   }
@@ -168,19 +181,21 @@ void single_threaded_blas(char** argv) {
 int main(int argc, char** argv) {
   single_threaded_blas(argv);
   const std::unique_ptr<cli::RunMode> mode = cli::start_run_mode(&argc, &argv);
-  CLI::App app{"linkbox: verified position analysis of linkages by interval branch-and-prune"};
-  app.set_version_flag("--version", "linkbox " LINKBOX_VERSION);
+  CLI::App app{"linkbox: verified position analysis of linkages by interval branch-and-prune", "linkbox"};
+  app.set_version_flag("-V,--version", "linkbox " LINKBOX_VERSION);
   app.require_subcommand(1);
+  app.footer("Run `linkbox help SUBCOMMAND` (or `linkbox SUBCOMMAND -h`) for its options.\n" + std::string(kExitCodes));
   Commands commands;
   add_solve(app, commands);
   add_resume(app, commands);
   add_check_and_convert(app, commands);
+  if (const int code = cli::answer_before_parse(app, argc, argv, mode->speaks()); code >= 0) return code;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     std::ostringstream silent;
     int code = mode->speaks() ? app.exit(e) : app.exit(e, silent, silent);
-    return code == 0 ? 0 : 2;
+    return code == 0 ? cli::exit_exact : cli::exit_bad_input;
   }
   try {
     return run_command(commands, *mode);

@@ -1,5 +1,6 @@
 #include "cli/run_mode.hpp"
 
+#include "cli/ending.hpp"
 #include "cli/interrupts.hpp"
 #include "report/json.hpp"
 #include "report/text.hpp"
@@ -53,7 +54,7 @@ int RunMode::report(const SolveCommand& cmd, const formulate::LoadedCase& c, con
   const solve::RunOptions& o = cmd.options;
   // `--json -` puts the JSON on standard output, alone: the summary goes to stderr.
   std::FILE* text = cmd.json_out == "-" ? stderr : stdout;
-  report::print_summary(text, c, o, r);
+  report::print_summary(text, c, o, r, !cmd.json_out.empty());
   std::fflush(text);  // before verification's progress lines on stderr
   nlohmann::json j = report::result_json(c.name, c.file, *c.formulation, o, r);
   j.update(extra());
@@ -61,16 +62,16 @@ int RunMode::report(const SolveCommand& cmd, const formulate::LoadedCase& c, con
   // search's result is on disk before verification starts, and replaced once it is verified.
   if (distributed() && interrupts().load() && !cmd.json_out.empty() && cmd.json_out != "-")
     solve::write_output(cmd.json_out, j.dump(1) + '\n');
-  if (!cmd.no_verify) {
-    if (const auto v = verifier(interrupts().load() < 2, verify_options(cmd))) {
-      report::print_verification(text, c, *v);
-      report::add_verification(j, *c.formulation, *v);
-      j.update(extra());
-    }
+  std::optional<verify::VerifyReport> v;
+  if (!cmd.no_verify) v = verifier(interrupts().load() < 2, verify_options(cmd));
+  if (v) {
+    report::print_verification(text, c, *v);
+    report::add_verification(j, *c.formulation, *v);
+    j.update(extra());
   }
   if (!cmd.json_out.empty()) solve::write_output(cmd.json_out, j.dump(1) + '\n');
   std::fflush(text);
-  return interrupt_exit_code();
+  return end_of_run(cmd, c, r, v ? &*v : nullptr, speaks());
 }
 
 }  // namespace linkbox::cli

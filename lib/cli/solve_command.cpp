@@ -35,48 +35,71 @@ CLI::Validator number(double lo, bool lo_open, double hi = INFINITY) {
         const bool ok = end != text.c_str() && *end == '\0' && (lo_open ? x > lo : x >= lo) && x <= hi;
         return ok ? "" : "expected " + want + ", got '" + text + "'";
       },
-      want.substr(2), "");
+      "", "");  // no description: the help shows the option's plain type name
+}
+
+// A choice among words, shown in the help as `type`, e.g. "dfs|bfs".
+template <class T>
+CLI::Validator choice(const std::map<std::string, T>& words) {
+  return CLI::CheckedTransformer(words).description("");
 }
 
 void add_search_flags(CLI::App& cmd, SolveCommand& s) {
   solve::RunOptions& o = s.options;
   cmd.add_option("--sigma", o.params.sigma, "solution box size (default 1e-4, or the case's [solve] table)")
-      ->check(number(0, true));
-  cmd.add_option("--rho", o.params.rho, "split when volume ratio after a shrink exceeds rho (default: 0.99 on spherical cases, the papers' value; 0.8 elsewhere)")->check(number(0, true, 1));
-  cmd.add_option("--order", o.params.order, "dfs or bfs")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, solve::Order>{{"dfs", solve::Order::depth_first}, {"bfs", solve::Order::breadth_first}}));
+      ->check(number(0, true))
+      ->type_name("S");
+  cmd.add_option("--rho", o.params.rho, "split when volume ratio after a shrink exceeds rho, 0 < R <= 1 (default: 0.99 on spherical cases, the papers' value; 0.8 elsewhere)")
+      ->check(number(0, true, 1))
+      ->type_name("R");
+  cmd.add_option("--order", o.params.order, "depth- or breadth-first order of the boxes (default dfs)")
+      ->transform(choice(
+          std::map<std::string, solve::Order>{{"dfs", solve::Order::depth_first}, {"bfs", solve::Order::breadth_first}}))
+      ->type_name("dfs|bfs");
   s.prune = o.strategy.prune.text();  // the default
   cmd.add_option("--prune", s.prune,
                  "contractors: auto (default), or a comma-separated list of " + solve::contractor_names() +
-                     "; '/' starts a stage that runs only when the earlier ones stall, e.g. hc4,newton/lp");
-  cmd.add_option("--bisect", o.bisect, "auto (default), widest, round-robin or smear")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, solve::Bisect>{{"auto", solve::Bisect::automatic},
+                     "; '/' starts a stage that runs only when the earlier ones stall, e.g. hc4,newton/lp")
+      ->type_name("LIST");
+  cmd.add_option("--bisect", o.bisect, "the variable to split (default auto)")
+      ->type_name("auto|widest|round-robin|smear")
+      ->transform(choice(std::map<std::string, solve::Bisect>{{"auto", solve::Bisect::automatic},
                                                                               {"widest", solve::Bisect::widest},
                                                                               {"round-robin", solve::Bisect::round_robin},
                                                                               {"smear", solve::Bisect::smear}}));
-  cmd.add_option("--lp", o.strategy.lp, "LP backend: safe or exact")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, prune::lp::LpBackend>{
+  cmd.add_option("--lp", o.strategy.lp, "the LP backend of the lp contractor (default safe)")
+      ->type_name("safe|exact")
+      ->transform(choice(std::map<std::string, prune::lp::LpBackend>{
           {"safe", prune::lp::LpBackend::safe}, {"exact", prune::lp::LpBackend::exact}}));
-  cmd.add_option("--arith", o.strategy.arith, "verified (default) or float: the UNVERIFIED float variant, for comparison")
-      ->transform(CLI::CheckedTransformer(
+  cmd.add_option("--arith", o.strategy.arith, "float is the UNVERIFIED float variant, for comparison (default verified)")
+      ->type_name("verified|float")
+      ->transform(choice(
           std::map<std::string, Arith>{{"verified", Arith::verified}, {"float", Arith::float_unverified}}));
 }
 
 void add_run_flags(CLI::App& cmd, SolveCommand& s) {
   solve::RunOptions& o = s.options;
-  cmd.add_option("--time-limit", o.params.time_limit, "seconds (0 = none); the search stops and keeps what it proved")
-      ->check(number(0, false));
-  cmd.add_option("--max-boxes", o.params.max_boxes, "processed boxes (0 = none)")->check(number(0, false));
-  cmd.add_option("--threads", o.threads, "threads: sub-problems in parallel, and the boxes of each search")->check(CLI::Range(1, 256));
-  cmd.add_option("--json", s.json_out, "write the result as JSON ('-': standard output, the summary then on stderr)");
-  cmd.add_option("--checkpoint", s.checkpoint, "save the run's state to this file, to go on with `linkbox resume`");
+  cmd.add_option("--time-limit", o.params.time_limit, "stop the search after SEC seconds, keeping what it proved (default 0: none)")
+      ->check(number(0, false))
+      ->type_name("SEC");
+  cmd.add_option("--max-boxes", o.params.max_boxes, "stop the search after N processed boxes (default 0: none)")
+      ->check(number(0, false))
+      ->type_name("N");
+  cmd.add_option("--threads", o.threads, "1 to 256 threads: sub-problems in parallel, and the boxes of each search (default 1)")
+      ->check(CLI::Range(1, 256).description(""))
+      ->type_name("T");
+  cmd.add_option("--json", s.json_out, "write the result as JSON ('-': standard output, the summary then on stderr) (default: none)")
+      ->type_name("OUT");
+  cmd.add_option("--checkpoint", s.checkpoint, "save the run's state to this file, to go on with `linkbox resume` (default: none)")
+      ->type_name("FILE");
   cmd.add_option("--checkpoint-every", o.checkpoint_every, "seconds between checkpoints (default 60)")
-      ->check(number(0, true));
+      ->check(number(0, true))
+      ->type_name("SEC");
   cmd.add_flag("--quiet", s.quiet, "no progress on stderr");
   cmd.add_option("--record-tree", s.record_tree,
                  "write every processed box (sub-problem, raced candidate, path, outcome, seconds) as CSV: the "
-                 "search tree that papers/benchmarks/scaling.py replays");
+                 "search tree that papers/benchmarks/scaling.py replays (default: none)")
+      ->type_name("FILE");
   cmd.add_flag("--no-verify", s.no_verify, "skip clustering and certification");
 }
 

@@ -11,7 +11,7 @@ std::string volume_text(double share) {
 }  // namespace
 
 void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::RunOptions& o,
-                   const solve::CaseResult& r) {
+                   const solve::CaseResult& r, bool json_written) {
   const auto& f = *c.formulation;
   std::fprintf(out, "case      %s (%s, %s)\n", c.name.c_str(), c.kind.c_str(), c.file.c_str());
   const std::string asked = o.strategy.prune.text(), ran = r.strategy.text();
@@ -55,6 +55,9 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
                "search [s]", "wall [s]");
   std::fprintf(out, "%-12zu %10ld %10ld %10ld %10ld %10.3f %10.3f\n", r.subproblems.size(), r.total.processed,
                r.total.empty, r.total.split, r.total.solution, r.total.seconds, r.seconds);
+  if (r.boxes_taken != r.total.processed)
+    std::fprintf(out, "(the progress lines' count: %ld boxes taken by this run, raced candidates included; "
+                      "the table counts each sub-problem's result)\n", r.boxes_taken);
   std::fprintf(out, "\n%s\n",
                r.complete ? "complete: every box of the domain was processed"
                           : ("INCOMPLETE (" + r.stop_reason + "): results cover only what was explored; " +
@@ -70,7 +73,8 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
   for (auto& s : r.subproblems)
     for (auto& b : s.solutions) {
       if (shown++ == kShown) {
-        std::fprintf(out, "  ... %zu more in the JSON output\n", total - kShown);
+        std::fprintf(out, "  ... %zu more %s\n", total - kShown,
+                     json_written ? "in the JSON output" : "(--json OUT writes them all)");
         return;
       }
       const Box box = f.to_output(s.index, b);

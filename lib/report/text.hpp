@@ -8,8 +8,9 @@
 
 namespace linkbox::report {
 
+// `json_written`: the run writes a JSON, which lists the solution boxes the summary leaves out.
 void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::RunOptions& o,
-                   const solve::CaseResult& r);
+                   const solve::CaseResult& r, bool json_written);
 void print_verification(std::FILE* out, const formulate::LoadedCase& c, const verify::VerifyReport& v);
 
 }  // namespace linkbox::report

@@ -252,6 +252,9 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (!in) throw std::invalid_argument("cannot read checkpoint " + path + ": " + std::strerror(errno));
   try {
     const json j = json::parse(in);
+    if (j.is_object() && j.contains("subproblem_stats") && !j.contains("linkbox_checkpoint"))
+      throw std::invalid_argument("a result, not a checkpoint: its pending boxes lack the search's state (their "
+                                  "order, the race); run the case with --checkpoint FILE, then resume FILE");
     if (!j.is_object() || !j.contains("linkbox_checkpoint"))
       throw std::invalid_argument("not a linkbox checkpoint");
     if (j.at("linkbox_checkpoint") != kFormat)

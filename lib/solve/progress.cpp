@@ -29,7 +29,7 @@ void Ticker::run() {
   }
 }
 
-void Ticker::print_line() const {
+void Ticker::print_line() {
   size_t finished = 0;
   long pending = 0;
   double done = 0;
@@ -41,11 +41,14 @@ void Ticker::print_line() const {
   }
   // Pending boxes near roots or on a curve hold a sliver of the volume: below what the
   // tally (1 - pending volume) resolves, it reads "<0.001%", never 0 while boxes remain.
-  const double left = 100 * std::max(0.0, 1 - done / static_cast<double>(tallies_.size()));
+  // A race that turns to another candidate starts its tally afresh: what an earlier line
+  // showed as explored stays so.
+  const double left = std::min(shown_left_, 100 * std::max(0.0, 1 - done / static_cast<double>(tallies_.size())));
+  shown_left_ = left;
   char volume[32];
   if (pending > 0 && left < 1e-3) std::snprintf(volume, sizeof volume, "<0.001%%");
   else std::snprintf(volume, sizeof volume, "%.3g%%", left);
-  std::fprintf(stderr, "linkbox: %zu/%zu sub-problems, %ld boxes, %ld pending, %s of the volume left, %.1f s\n",
+  std::fprintf(stderr, "linkbox: %zu/%zu sub-problems, %ld boxes taken, %ld pending, %s of the volume left, %.1f s\n",
                finished, tallies_.size(), budget_.boxes_taken(), pending, volume, budget_.elapsed());
 }
 

@@ -27,8 +27,9 @@ class Ticker {
 
  private:
   void run();
-  void print_line() const;
+  void print_line();
   bool progress_;
+  double shown_left_ = 100;  // the volume left last printed, in percent: never shown higher
   const std::vector<Tally>& tallies_;
   const Budget& budget_;
   Checkpointer& checkpoints_;

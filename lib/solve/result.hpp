@@ -60,6 +60,7 @@ struct CaseResult {
   bool complete = true;
   std::string stop_reason;  // why incomplete: "time limit reached", "box limit reached", "interrupted"
   long pending_boxes = 0;   // unexplored boxes over all sub-problems
+  long boxes_taken = 0;     // boxes processed, raced candidates' included: the progress lines' count
   double volume_left = 0;   // unexplored share of the domain, averaged over sub-problems
   bool rigorous = true;     // false: float pruning (--arith float), exclusion not proved
   double seconds = 0;       // wall clock of the whole run

@@ -45,6 +45,7 @@ void summarise(CaseResult& result, const RunOptions& options, const Budget& budg
   result.rigorous = options.strategy.arith == Arith::verified;
   if (!result.complete) result.stop_reason = budget.reason();
   result.seconds = budget.elapsed();
+  result.boxes_taken = budget.boxes_taken();
 }
 
 }  // namespace linkbox::solve

@@ -57,7 +57,7 @@ def run_once(linkbox, case, flags, prune, limit):
                         "--time-limit", str(limit)] + flags, capture_output=True, text=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
-    if p.returncode != 0:
+    if p.returncode not in (0, 4, 5):
         return cpu, None
     with open(out) as f:
         r = json.load(f)

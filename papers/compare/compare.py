@@ -329,7 +329,7 @@ def solve_once(cli, path, prune, lp, arith, sigma, time_limit, tmp):
     wall = time.monotonic() - t0
     if p.returncode == 2 and ("needs a" in p.stderr or "square" in p.stderr or "multi-affine" in p.stderr):
         return "n/a", None, wall, p.stderr.strip()
-    if p.returncode != 0 or not os.path.exists(out):
+    if p.returncode not in (0, 4, 5) or not os.path.exists(out):
         return "error", None, wall, p.stderr.strip()[-300:]
     with open(out) as f:
         j = json.load(f)

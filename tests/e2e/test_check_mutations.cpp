@@ -80,7 +80,8 @@ const Solved& solved(const std::string& case_file, const std::string& options = 
     s = std::make_unique<Solved>();
     s->case_file = case_file;
     s->json_file = tmp(std::filesystem::path(case_file).stem().string() + ".json");
-    REQUIRE(run_cli("solve " + case_file + " --quiet " + options + " --json " + s->json_file) == 0);
+    const int code = run_cli("solve " + case_file + " --quiet " + options + " --json " + s->json_file);
+    REQUIRE((code == 0 || code == 4 || code == 5));  // a result was written: exact, unresolved, incomplete
     std::ifstream in(s->json_file);
     s->result = json::parse(in);
     s->formulation = formulate::load_case(case_file).formulation;
@@ -440,7 +441,8 @@ TEST_CASE("an exact count needs every certified cluster alone in its hull (dupli
   CHECK_FALSE(failures(forged, *f).empty());
 
   const std::string out = tmp("close-7704.json");
-  REQUIRE(run_cli("solve " + c + " --quiet --json " + out) == 0);
+  const int code = run_cli("solve " + c + " --quiet --json " + out);
+  REQUIRE((code == 0 || code == 4));  // an exact count, or unresolved clusters
   std::ifstream fresh_in(out);
   const json fresh = json::parse(fresh_in);
   const std::string headline = fresh["headline"];

@@ -190,7 +190,7 @@ TEST_CASE("a run stopped by a limit and resumed from its checkpoint ends with th
                       cp = tmp("run.checkpoint");
     std::filesystem::remove(cp);
     REQUIRE(run("solve " + src(c.path) + " --quiet --json " + whole).code == 0);
-    REQUIRE(run("solve " + src(c.path) + " --quiet " + c.stop + " --checkpoint " + cp + " --json " + part).code == 0);
+    REQUIRE(run("solve " + src(c.path) + " --quiet " + c.stop + " --checkpoint " + cp + " --json " + part).code == 5);
     const auto p = read(part);
     REQUIRE(p["complete"] == false);
     CHECK(p["pending_boxes"].get<long>() > 0);
@@ -207,7 +207,7 @@ TEST_CASE("a run stopped by a limit and resumed from its checkpoint ends with th
 TEST_CASE("a checkpoint of another case, of other settings or damaged is refused", "[run_control][cli]") {
   const std::string cp = tmp("refuse.checkpoint");
   std::filesystem::remove(cp);
-  REQUIRE(run("solve " + src("cases/spherical/wrist.toml") + " --quiet --max-boxes 5 --checkpoint " + cp).code == 0);
+  REQUIRE(run("solve " + src("cases/spherical/wrist.toml") + " --quiet --max-boxes 5 --checkpoint " + cp).code == 5);
   Ran r = run("resume " + cp + " --quiet --sigma 0.001");
   CHECK(r.code == 2);
   CHECK(r.out.find("the checkpoint was made with sigma 0.0001, not 0.001") != std::string::npos);
@@ -224,14 +224,16 @@ TEST_CASE("a checkpoint of another case, of other settings or damaged is refused
   CHECK(run("resume " + cp + " --quiet --sigma 0.0001").code == 0);  // the same settings are fine
 }
 
-TEST_CASE("an interrupt keeps what was proven: partial JSON, pending boxes, exit 128 + signal", "[run_control][cli]") {
-  const std::string out = tmp("interrupted.json"), cp = tmp("interrupted.checkpoint");
+TEST_CASE("an interrupt keeps what was proven: partial JSON, pending boxes, exit 128 + signal, how to resume",
+          "[run_control][cli]") {
+  const std::string out = tmp("interrupted.json"), cp = tmp("interrupted.checkpoint"), err = tmp("interrupted.err");
   std::filesystem::remove(cp);
   std::filesystem::remove(out);
   const pid_t pid = fork();
   REQUIRE(pid >= 0);
   if (pid == 0) {
     // eco9 takes seconds; the checkpoint file appears when the search has started.
+    if (!std::freopen(err.c_str(), "w", stderr)) _exit(126);
     execl(LINKBOX_CLI, LINKBOX_CLI, "solve", src("cases/benchmarks/eco9.toml").c_str(), "--quiet", "--json",
           out.c_str(), "--checkpoint", cp.c_str(), static_cast<char*>(nullptr));
     _exit(127);
@@ -249,6 +251,9 @@ TEST_CASE("an interrupt keeps what was proven: partial JSON, pending boxes, exit
   CHECK(j["pending_boxes"].get<long>() > 0);
   CHECK(j["subproblem_stats"][0]["pending"].size() == j["pending_boxes"].get<size_t>());
   CHECK(j["headline"].get<std::string>().find("search incomplete (interrupted)") != std::string::npos);
+  std::stringstream said;
+  said << std::ifstream(err).rdbuf();
+  CHECK(said.str().find("linkbox: next: to go on from where it stopped: linkbox resume " + cp) != std::string::npos);
 }
 
 TEST_CASE("the LP contractor stops between LPs when asked, keeping only proved bounds", "[run_control]") {
@@ -356,7 +361,9 @@ name = "singular-origin"
 variables = [ { name = "x", domain = [-1, 1] }, { name = "y", domain = [-1, 1] } ]
 equations = [ "x^2 + y^2", "x^2 - y^3" ]
 )");
-  REQUIRE(run("solve " + path + " --quiet --json " + out).code == 0);
+  const Ran r = run("solve " + path + " --quiet --json " + out);
+  REQUIRE(r.code == 4);  // complete, unresolved
+  CHECK(r.out.find("linkbox: next: a singular root") != std::string::npos);
   const auto j = read(out);
   CHECK(j["verification"]["exact"] == false);
   CHECK(j["certified_roots"] == 0);
