@@ -68,9 +68,8 @@ class Case:
         Each option is the CLI's flag of that name. None takes it from the case's ``[solve]``
         table, else the CLI's default, as a flag not given does.
 
-        prune: contractors: "auto" (default), or a comma-separated list of trapezoid, hc4,
-            lp, newton, acid...; "/" starts a stage that runs only when the earlier ones
-            stall, e.g. "hc4,newton/lp".
+        prune: contractors: "auto" (default), or a comma-separated list of {contractors};
+            "/" starts a stage that runs only when the earlier ones stall, e.g. "hc4,newton/lp".
         bisect: "auto" (default), "widest", "round-robin" or "smear".
         sigma: solution box size (default 1e-4).
         rho: split when the volume ratio after a shrink exceeds rho (default 0.99 on
@@ -112,6 +111,9 @@ class Case:
     def check(self, result: Result):
         """Re-checks every certificate of ``result`` against this case (``linkbox check``)."""
         return result.check(self)
+
+
+Case.solve.__doc__ = Case.solve.__doc__.replace("{contractors}", _linkbox.contractor_names())
 
 
 def load(path: Union[str, os.PathLike]) -> Case:

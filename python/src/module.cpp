@@ -155,7 +155,7 @@ class Case {
   std::string pipeline(const solve::RunOptions& o, bool verifying, const std::atomic<int>& flag) const {
     const solve::CaseResult r = solve::solve_case(*c_.formulation, o);
     nlohmann::json j = report::result_json(c_.name, c_.file, *c_.formulation, o, r);
-    if (verifying) {
+    if (verifying && flag.load() < 2) {  // a second interrupt before verification skips it, as in the CLI
       verify::VerifyOptions vo;
       vo.skip_rest = [&flag] { return flag.load() >= 2; };
       vo.threads = o.threads;
@@ -205,5 +205,6 @@ PYBIND11_MODULE(_linkbox, m) {
   m.def("load_text", [](const std::string& text, const std::string& file) {
     return Case(formulate::load_case_text(text, file));
   }, py::arg("text"), py::arg("file"));
+  m.def("contractor_names", &solve::contractor_names, "The contractors a prune strategy may name.");
   m.def("interrupt", &interrupt, "Interrupts every run in progress, as a signal does the CLI's.");
 }

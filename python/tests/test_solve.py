@@ -56,6 +56,15 @@ def test_a_polynomial_built_in_code(tmp_path):
     assert again.data == result.data and np.array_equal(again.roots, result.roots)
 
 
+def test_a_polynomial_from_sympy():
+    sympy = pytest.importorskip("sympy")
+    x, y = sympy.symbols("x y")
+    case = linkbox.Case.polynomial(variables={"x": (-2, 2), "y": (-2, 2)}, equations=[x**2 + y**2 - 1, x - y],
+                                   inequalities=[x > 0])
+    result = case.solve()
+    assert result.certified_roots == 1 and np.allclose(result.roots, [[2 ** -0.5, 2 ** -0.5]])
+
+
 def test_from_json_checks_against_the_named_case(tmp_path, cli):
     out = tmp_path / "wrist.json"
     subprocess.run([cli, "solve", str(ROOT / "cases/spherical/wrist.toml"), "--quiet", "--json", str(out)], check=True,
