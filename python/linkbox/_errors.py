@@ -19,3 +19,6 @@ class Interrupted(KeyboardInterrupt):
     def __init__(self, result):
         super().__init__("linkbox: interrupted: " + result.headline)
         self.result = result
+
+
+CaseError.__module__ = Interrupted.__module__ = "linkbox"  # as tracebacks name them
