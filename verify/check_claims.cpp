@@ -114,6 +114,7 @@ const std::vector<TrustedField>& trusted_fields() {
       {"case", "a name"},
       {"kind", "a name"},
       {"case_file", "a hint: the case is named by --case or found there, and bound by case_sha256"},
+      {"checkpoint", "where the search's state was kept, to go on with"},
       {"format", "read to parse the result"},
       {"linkbox", "the version that wrote the result"},
       {"verification.seconds", "a figure of the run"},

@@ -18,6 +18,7 @@ std::string number(double x) {
 // A run stopped by a limit or an interrupt: where to go on from.
 std::string go_on(const SolveCommand& cmd, const formulate::LoadedCase& c, const solve::CaseResult& r) {
   if (!cmd.checkpoint.empty()) return "to go on from where it stopped: linkbox resume " + cmd.checkpoint;
+  if (!cmd.kept_checkpoint.empty()) return "to go on from where it stopped: linkbox resume " + cmd.json_out;
   std::string again = "to go on next time from where a run stops, add --checkpoint FILE (then: linkbox resume FILE)";
   const double t = cmd.options.params.time_limit;
   const long n = cmd.options.params.max_boxes;

@@ -8,6 +8,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <string>
 
 namespace linkbox::cli {
@@ -49,6 +50,10 @@ int RunMode::internal_error() const {
   return 1;
 }
 
+namespace {
+std::error_code ignored;
+}
+
 int RunMode::report(const SolveCommand& cmd, const formulate::LoadedCase& c, const solve::CaseResult& r,
                     const std::function<nlohmann::json()>& extra, const Verifier& verifier) const {
   const solve::RunOptions& o = cmd.options;
@@ -58,6 +63,9 @@ int RunMode::report(const SolveCommand& cmd, const formulate::LoadedCase& c, con
   std::fflush(text);  // before verification's progress lines on stderr
   nlohmann::json j = report::result_json(c.name, c.file, *c.formulation, o, r);
   j.update(extra());
+  const std::string& checkpoint = cmd.checkpoint.empty() ? cmd.kept_checkpoint : cmd.checkpoint;
+  if (r.complete && !cmd.kept_checkpoint.empty()) std::filesystem::remove(cmd.kept_checkpoint, ignored);
+  if (!r.complete && !checkpoint.empty()) j["checkpoint"] = checkpoint;  // what `linkbox resume OUT` reads
   // mpirun answers an interrupt with SIGTERM to every rank and SIGKILL a second later: the
   // search's result is on disk before verification starts, and replaced once it is verified.
   if (distributed() && interrupts().load() && !cmd.json_out.empty() && cmd.json_out != "-")

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -120,6 +121,26 @@ void check_outputs(const SolveCommand& cmd, const RunMode& mode) {
   check_writable(cmd.record_tree, "--record-tree");
 }
 
+// The checkpoint kept beside `--json OUT` (none under mpirun, with --checkpoint, for stdout,
+// or where it could not be written).
+std::string kept_checkpoint(const SolveCommand& cmd, const RunMode& mode) {
+  if (mode.distributed() || !cmd.checkpoint.empty() || cmd.json_out.empty() || cmd.json_out == "-") return {};
+  const std::string path = cmd.json_out + ".ckpt";
+  return solve::output_problem(path).empty() ? path : std::string();
+}
+
+// `linkbox resume OUT.json`: the checkpoint an incomplete result names, found as written or
+// beside the result; any other file is read as a checkpoint.
+std::string checkpoint_of(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("format") || !j.contains("checkpoint")) return file;
+  const std::string named = j.at("checkpoint").get<std::string>();
+  if (std::filesystem::exists(named) || std::filesystem::path(named).is_absolute()) return named;
+  const auto beside = std::filesystem::path(file).parent_path() / std::filesystem::path(named).filename();
+  return std::filesystem::exists(beside) ? beside.string() : named;
+}
+
 // FNV-1a of the case file's bytes: a checkpoint is for this exact text.
 std::string file_hash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -155,8 +176,9 @@ void settle_options(SolveCommand& cmd, const formulate::LoadedCase& c, SavedRun&
   } else {
     resolve_settings(cmd, c.solve, c.file);
   }
-  if (!cmd.checkpoint.empty()) {
-    o.checkpoint = cmd.checkpoint;
+  const std::string& checkpoint = cmd.checkpoint.empty() ? cmd.kept_checkpoint : cmd.checkpoint;
+  if (!checkpoint.empty()) {
+    o.checkpoint = checkpoint;
     o.checkpoint_header =
         nlohmann::json{{"case_file", c.file}, {"case_name", c.name}, {"case_hash", hash}, {"settings", search_settings(o)}}
             .dump();
@@ -175,8 +197,10 @@ int run_solve(SolveCommand& cmd, const RunMode& mode) {
   cmd.options.progress = !cmd.quiet;
   cmd.options.params.interrupt = &interrupts();
   check_outputs(cmd, mode);
+  cmd.kept_checkpoint = kept_checkpoint(cmd, mode);
   SavedRun resumed;
   if (!cmd.resume.empty()) {
+    cmd.resume = checkpoint_of(cmd.resume);
     resumed.saved = solve::read_checkpoint(cmd.resume);
     resumed.header = nlohmann::json::parse(resumed.saved->header);
     if (cmd.case_file.empty()) cmd.case_file = resumed.header.value("case_file", "");

@@ -17,7 +17,11 @@ struct SolveCommand {
   std::string case_file, json_out, prune, checkpoint, record_tree;
   solve::RunOptions options;
   bool quiet = false, no_verify = false;
-  std::string resume;  // resume: the checkpoint to go on from
+  std::string resume;  // resume: the checkpoint to go on from (or a result naming one)
+  // A run with --json OUT and no --checkpoint keeps its state in OUT.ckpt, removed when the
+  // run completes; an incomplete result names it (`checkpoint`), so `linkbox resume OUT`
+  // goes on from it.
+  std::string kept_checkpoint;
   CLI::App* app = nullptr;
   bool given(const char* flag) const;  // on the command line
 };

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -115,9 +116,32 @@ TEST_CASE("progress lines count the boxes the summary reports, and the volume le
   CHECK(std::stol(taken[1]) >= boxes.back());
 }
 
-TEST_CASE("resume of a result JSON says it needs a checkpoint instead of calling the file damaged", "[cli]") {
-  const std::string out = tmp("limited.json");
+TEST_CASE("an incomplete result names its checkpoint, and resume of the result ends as an unbroken run", "[cli]") {
+  const std::string out = tmp("limited.json"), resumed = tmp("resumed.json"), whole = tmp("whole.json");
+  std::filesystem::remove(out + ".ckpt");
+  Ran r = run("solve " + src("cases/spherical/four-loop.toml") + " --quiet --max-boxes 200 --json " + out);
+  REQUIRE(r.code == 5);
+  CHECK(has(r, "linkbox: next: to go on from where it stopped: linkbox resume " + out + "\n"));
+  const nlohmann::json limited = nlohmann::json::parse(std::ifstream(out));
+  REQUIRE(limited.value("checkpoint", "") == out + ".ckpt");
+  REQUIRE(std::filesystem::exists(out + ".ckpt"));
+  REQUIRE(run("resume " + out + " --quiet --json " + resumed).code == 0);
+  REQUIRE(run("solve " + src("cases/spherical/four-loop.toml") + " --quiet --json " + whole).code == 0);
+  const nlohmann::json a = nlohmann::json::parse(std::ifstream(resumed)), b = nlohmann::json::parse(std::ifstream(whole));
+  CHECK(a["solutions"] == b["solutions"]);
+  CHECK(a["roots"] == b["roots"]);
+  CHECK(a["stats"]["processed"] == b["stats"]["processed"]);
+  // A complete run keeps no checkpoint beside its result and names none.
+  CHECK_FALSE(b.contains("checkpoint"));
+  CHECK_FALSE(std::filesystem::exists(whole + ".ckpt"));
+}
+
+TEST_CASE("resume of a result without a checkpoint says it needs one instead of calling the file damaged", "[cli]") {
+  const std::string out = tmp("limited-edited.json");
   REQUIRE(run("solve " + src("cases/spherical/four-loop.toml") + " --quiet --max-boxes 200 --json " + out).code == 5);
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(out));
+  j.erase("checkpoint");
+  std::ofstream(out) << j.dump();
   const Ran r = run("resume " + out + " --quiet");
   CHECK(r.code == 2);
   CHECK(has(r, "a result, not a checkpoint"));
