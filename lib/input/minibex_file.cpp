@@ -353,19 +353,17 @@ class Parser {
     t_.fail(tok.line, "expected a number, a name or '(', found " + peer::describe(tok));
   }
 
-  // "[a, b]" (the '[' read): an interval constant, or a if both ends are the same number.
+  // "[a, b]" (the '[' read): an interval constant, or a where the expression grammar takes
+  // it for a point (so that it may bound a domain).
   NodePtr interval(int line) {
     const NodePtr lo = constant_expression("the lower end of an interval");
     t_.expect_symbol(",", "',' between the ends of the interval");
     const NodePtr hi = constant_expression("the upper end of an interval");
     t_.expect_symbol("]", "']' closing the '[' on line " + std::to_string(line));
-    IntervalConstants ignored;
-    const Interval a = peer::constant_value(*lo, "the lower end of an interval", file_, &ignored);
-    const Interval b = peer::constant_value(*hi, "the upper end of an interval", file_, &ignored);
-    if (a.lower() > b.upper()) t_.fail(line, "empty interval: its lower end exceeds its upper end");
-    const bool point = peer::write(*lo, file_, line).text == peer::write(*hi, file_, line).text ||
-                       (a.lower() == a.upper() && b.lower() == b.upper() && a.lower() == b.lower());
-    return point ? lo : peer::range(lo, hi, line);
+    const NodePtr range = peer::range(lo, hi, line);
+    IntervalConstants genuine;
+    peer::constant_value(*range, "the interval", file_, &genuine);
+    return genuine.empty() ? lo : range;
   }
 
   NodePtr identifier(const Token& tok) {
