@@ -220,6 +220,7 @@ VerifyReport conclude(const formulate::Formulation& f, std::vector<ClusterReport
   const std::vector<bool> periodic(f.output_names().size(), f.outputs_are_angles());
   const int overlaps_unresolved = merge_duplicates(f, report, periodic, options.newton);
   report.inequalities = static_cast<int>(f.natural(0).inequalities.size());
+  report.interval_constants = f.natural(0).interval_constants;
   separate_maps(f, report);
   summarise(report, overlaps_unresolved, result);
   return report;

@@ -72,6 +72,8 @@ struct VerifyReport {
   int empty = 0;
   int infeasible = 0;
   int inequalities = 0;  // of the natural system: the count is of roots where they all hold
+  // The natural system's genuine interval constants: every claim holds for every value of them.
+  std::vector<std::string> interval_constants;
   bool exact = false;  // "exactly N roots in the domain" holds
   std::string headline;
   double seconds = 0;

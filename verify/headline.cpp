@@ -63,17 +63,20 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
                                      (report.inequalities == 1 ? "inequality holds" : "inequalities hold");
   const std::string excluded =
       report.infeasible ? ", " + std::to_string(report.infeasible) + " proved to violate an inequality" : "";
+  // Interval coefficients stand for every value in them: each proof holds for all of them.
+  const std::string family =
+      report.interval_constants.empty() ? "" : " for every value of the interval constants";
   if (report.exact && report.curves) {
-    report.headline = "exactly " + map_words(n, report.closed_curves, report.open_arcs) + " " + where +
+    report.headline = "exactly " + map_words(n, report.closed_curves, report.open_arcs) + " " + where + family +
                       ", each certified (isolated roots by interval Newton, curves by arc certificates)" + excluded;
     return;
   }
   if (report.exact) {
-    report.headline = "exactly " + std::to_string(n) + " root" + (n == 1 ? "" : "s") + " " + where +
+    report.headline = "exactly " + std::to_string(n) + " root" + (n == 1 ? "" : "s") + " " + where + family +
                       ", each in its certified box" + (report.infeasible ? " (" + excluded.substr(2) + ")" : "");
     return;
   }
-  report.headline = std::to_string(n) + " certified";
+  report.headline = std::to_string(n) + " certified" + family;
   if (report.curves) report.headline += ", " + std::to_string(report.curves) + " curve cluster(s)";
   if (report.closed_curves + report.open_arcs)
     report.headline += " (" + map_words(-1, report.closed_curves, report.open_arcs) + " proved)";

@@ -23,7 +23,8 @@ const NaturalSystem& Formulation::natural(std::uint64_t chart) const {
 }
 
 NaturalSystem PolynomialFormulation::natural_system(std::uint64_t) const {
-  return {system_.equations, system_.names(), system_.domain(), system_.inequalities, {}, nullptr};
+  return {system_.equations, system_.names(), system_.domain(), system_.inequalities, {}, nullptr,
+          system_.interval_constants};
 }
 
 std::vector<std::string> PolynomialFormulation::output_names() const {
@@ -48,6 +49,12 @@ std::vector<std::string> PolynomialFormulation::model_notes() const {
     notes.push_back("lifted: " + std::to_string(declared) + " declared variables -> " + std::to_string(unknowns) +
                     " unknowns, " + std::to_string(system_.equations.size()) + " equations");
     for (auto& n : system_.lifting->notes) notes.push_back("  " + n);
+  }
+  if (!system_.interval_constants.empty()) {
+    std::string list;
+    for (auto& c : system_.interval_constants) list += (list.empty() ? "" : ", ") + c;
+    notes.push_back("interval constants " + list + ": each use is an interval coefficient, and roots are claimed "
+                    "for every value of them");
   }
   if (!system_.inequalities.empty()) {
     std::string list;

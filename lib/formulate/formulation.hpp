@@ -54,6 +54,9 @@ struct NaturalSystem {
   std::string missing;  // no equations: why the formulation has none (empty: not given)
   // When square: the equations compiled for interval Newton, over `unknowns`.
   std::shared_ptr<const model::CompiledSystem> compiled;
+  // The genuine interval constants of the coefficients (model::System): a certified root is
+  // then one for every value of them.
+  std::vector<std::string> interval_constants;
 };
 
 class Formulation {

@@ -13,17 +13,18 @@
 //   2*x*y - a*s = 0;
 //
 // Every kind of variable is an unknown of the system and every equation section holds at a
-// root, so roots are counted in all the variables. Equations are sums of signed monomials; a
-// monomial is a product of numbers, constants, PI and variables, each with an optional integer
-// power (x^2), and of SIN, COS, TAN, EXP of a constant (or of a variable, as far as linkbox's
-// equations take it). Constants and range bounds are expressions with + - * / ^, parentheses,
+// root, so roots are counted in all the variables. Equations (and inequalities, '<=' or '>=')
+// are sums of signed monomials; a monomial is a product of numbers, constants, PI and
+// variables, each with an optional integer power (x^2), and of SIN, COS, TAN, EXP of a
+// constant or of a variable (SIN, COS and TAN of variables are lifted as in TOML cases,
+// model/lifting.hpp). Constants and range bounds are expressions with + - * / ^, parentheses,
 // PI, SIN COS TAN COT ASIN ACOS ATAN EXP SQRT; there a unary minus binds tighter than '^'
 // (-2^2 is 4), as in CuikSuite. Keywords and section names are case-insensitive. Comments:
 // '%', '#', '//' to the end of the line, '/* */'. [SEARCH] DEPTH FIRST / BREADTH FIRST is
 // accepted and ignored (an order of search does not change the roots).
 //
-// Not supported, each an error naming it: circular ranges ('~'), INF, inequalities, matrix
-// equations (TX(...)*RZ(...) = ID), velocity and non-dynamic sections, [SEARCH] MIN, ATAN2,
+// Not supported, each an error naming it: circular ranges ('~'), INF (in a range, refused with
+// a suggested bound), EXP of a variable, matrix equations (TX(...)*RZ(...) = ID), velocity and non-dynamic sections, [SEARCH] MIN, ATAN2,
 // ABS, PWP, PARAMETER, DIFF, comparisons and '?:' in constants.
 #include "input/cuik_file.hpp"
 
@@ -31,7 +32,7 @@
 #include <map>
 #include <set>
 
-#include "input/peer_syntax.hpp"
+#include "input/peer_system.hpp"
 
 namespace linkbox::input {
 
@@ -100,7 +101,7 @@ class Parser {
  public:
   Parser(std::string_view text, const std::string& file)
       : t_(peer::tokenize(text, file, peer::LexerRules{true, true}), file), file_(file) {
-    c_.format = "CuikSuite";
+    d_.c.format = "CuikSuite";
   }
 
   PeerCase parse() {
@@ -140,9 +141,9 @@ class Parser {
       }
     }
     const int end = t_.peek().line;
-    if (c_.system.variables.empty()) t_.fail(end, "no variables (declare them under [SYSTEM VARS])");
-    if (c_.system.equations.empty()) t_.fail(end, "no equations (write them under [SYSTEM EQS])");
-    return std::move(c_);
+    if (d_.raw.variables.empty()) t_.fail(end, "no variables (declare them under [SYSTEM VARS])");
+    if (d_.raw.equations.empty()) t_.fail(end, "no equations (write them under [SYSTEM EQS])");
+    return peer::finish(std::move(d_), file_);
   }
 
  private:
@@ -174,12 +175,13 @@ class Parser {
                      "' is not supported: linkbox's variables are real intervals (write ':' for one)");
       t_.expect_symbol(":", "':' and the range of variable '" + name.text + "'");
       t_.expect_symbol("[", "'[' opening the range of '" + name.text + "'");
-      const NodePtr lo = constant_expression("the lower bound of '" + name.text + "'");
+      const NodePtr lo = bound("the lower bound of '" + name.text + "'");
       t_.expect_symbol(",", "',' between the bounds of '" + name.text + "'");
-      const NodePtr hi = constant_expression("the upper bound of '" + name.text + "'");
+      const NodePtr hi = bound("the upper bound of '" + name.text + "'");
       t_.expect_symbol("]", "']' closing the range of '" + name.text + "'");
+      if (!lo || !hi) peer::fail_unbounded(name.text, lo, hi, "INF", name.line, file_);
       peer::check_variable_name(name.text, name.line, file_);
-      peer::add_variable(c_, name.text, *lo, *hi, name.line, file_);
+      peer::add_variable(d_, name.text, *lo, *hi, name.line, file_);
       symbols_.emplace(name.text, Symbol{false, name.line, nullptr});
     }
   }
@@ -192,12 +194,11 @@ class Parser {
       const std::string label = "equation " + std::to_string(++equations_);
       const int line = first.line;
       const NodePtr lhs = monomials();
-      const Token& op = t_.peek();
-      if (op.text == "<=" || op.text == ">=")
-        t_.fail_here("inequality '" + op.text + "' in " + label +
-                     " is not supported: a polynomial case has equations only");
-      if (!t_.accept_symbol("="))
-        t_.fail_here("expected an operator or '=' in " + label + ", found " + peer::describe(op));
+      const Token op = t_.peek();
+      const bool inequality = op.kind == Token::Kind::Symbol && (op.text == "<=" || op.text == ">=");
+      if (!inequality && !t_.accept_symbol("="))
+        t_.fail_here("expected an operator, '<=', '>=' or '=' in " + label + ", found " + peer::describe(op));
+      if (inequality) t_.next();
       const NodePtr rhs = monomials();
       if (!t_.accept_symbol(";")) {
         const Token& found = t_.peek();
@@ -206,7 +207,10 @@ class Parser {
         t_.fail(t_.previous_line(),
                 "missing ';' after " + label + " (the next line starts with " + peer::describe(found) + ")");
       }
-      peer::add_equation(c_, lhs, rhs, line, label, file_);
+      if (inequality)
+        peer::add_inequality(d_, lhs, op.text, rhs, line, label);
+      else
+        peer::add_equation(d_, lhs, rhs, line, label, file_);
     }
   }
 
@@ -221,6 +225,17 @@ class Parser {
       return;
     }
     t_.fail_here("expected DEPTH FIRST or BREADTH FIRST after [SEARCH], found " + peer::describe(tok));
+  }
+
+  // A range's end: null for an infinite one ("-INF", "+INF" or "INF").
+  NodePtr bound(const std::string& what) {
+    const size_t sign = t_.at_symbol("-") || t_.at_symbol("+") ? 1 : 0;
+    const Token& tok = t_.peek(sign);
+    if (tok.kind != Token::Kind::Identifier || upper(tok.text) != "INF" ||
+        !(t_.at_symbol(",", sign + 1) || t_.at_symbol("]", sign + 1)))
+      return constant_expression(what);
+    for (size_t k = 0; k <= sign; ++k) t_.next();
+    return nullptr;
   }
 
   const Token& new_name(const char* what) {
@@ -400,7 +415,7 @@ class Parser {
 
   peer::Tokens t_;
   const std::string& file_;
-  PeerCase c_;
+  peer::Draft d_;
   std::map<std::string, Symbol, std::less<>> symbols_;
   int equations_ = 0;
   int depth_ = 0;

@@ -2,6 +2,7 @@
 
 #include "interval/rigorous.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -77,10 +78,11 @@ std::string_view trim(std::string_view s) {
 
 class Parser {
  public:
-  // `applications`: where functions of variables go (null: they are an error).
+  // `applications`: where functions of variables go; `intervals`: where the genuine interval
+  // constants are listed (null: either is an error).
   Parser(std::string_view text, const std::vector<std::string>& variables,
-         std::vector<model::Application>* applications = nullptr)
-      : text_(text), variables_(variables), applications_(applications) {}
+         std::vector<model::Application>* applications = nullptr, IntervalConstants* intervals = nullptr)
+      : text_(text), variables_(variables), applications_(applications), intervals_(intervals) {}
 
   Value parse() {
     if (next_token() == text_.size()) fail("empty expression", 0);
@@ -167,8 +169,42 @@ class Parser {
       expect_closing(at);
       return v;
     }
+    if (c == '[') return interval_constant();
     if (c == ')') fail("')' where a number, variable or '(' was expected", at);
     unexpected("a number, variable or '('");
+  }
+
+  // "[a, b]": the interval from the lower end of a's enclosure to the upper end of b's. Its
+  // text is listed in intervals_ unless it is a point (the same text twice, or one double).
+  Value interval_constant() {
+    const size_t open_at = pos_++;
+    Nesting guard(*this, open_at);
+    if (!intervals_)
+      fail("an interval constant ('[a, b]') is allowed only in equations and inequalities", open_at);
+    const size_t lower_at = next_token();
+    const Value lower = expression();
+    const size_t comma_at = pos_;
+    if (peek() != ',') unexpected("',' between the ends of the interval opened at column " + std::to_string(open_at));
+    ++pos_;
+    const size_t upper_at = next_token();
+    const Value upper = expression();
+    const size_t close_at = pos_;
+    if (peek() != ']') {
+      if (pos_ == text_.size()) fail("missing ']' for the '[' at column " + std::to_string(open_at), pos_);
+      unexpected("']' (closing the '[' at column " + std::to_string(open_at) + ")");
+    }
+    ++pos_;
+    if (lower.has_variable || upper.has_variable)
+      fail("the ends of an interval constant must be constant expressions", open_at);
+    const Interval a = lower.constant(), b = upper.constant();
+    if (a.lower() > b.upper()) fail("empty interval constant: its lower end exceeds its upper end", open_at);
+    const bool point = trim(text_.substr(lower_at, comma_at - lower_at)) ==
+                           trim(text_.substr(upper_at, close_at - upper_at)) ||
+                       (a.lower() == a.upper() && b.lower() == b.upper() && a.lower() == b.lower());
+    const std::string text(text_.substr(open_at, pos_ - open_at));
+    if (!point && std::find(intervals_->begin(), intervals_->end(), text) == intervals_->end())
+      intervals_->push_back(text);
+    return Value{Polynomial::constant(Interval(a.lower(), b.upper())), false};
   }
 
   Value number() {
@@ -369,6 +405,7 @@ class Parser {
   std::string_view text_;
   const std::vector<std::string>& variables_;
   std::vector<model::Application>* applications_;
+  IntervalConstants* intervals_;
   size_t pos_ = 0;
   int depth_ = 0;
 };
@@ -380,70 +417,13 @@ model::Polynomial parse_polynomial(std::string_view text, const std::vector<std:
 }
 
 model::Polynomial parse_with_functions(std::string_view text, const std::vector<std::string>& variables,
-                                       std::vector<model::Application>& applications) {
-  return Parser(text, variables, &applications).parse().poly;
+                                       std::vector<model::Application>& applications, IntervalConstants* intervals) {
+  return Parser(text, variables, &applications, intervals).parse().poly;
 }
 
-namespace {
-
-// One side of a comparison, its errors placed in the whole text.
-Polynomial parse_side(std::string_view text, size_t offset, const std::vector<std::string>& variables,
-                      std::vector<model::Application>& applications) {
-  try {
-    return Parser(text, variables, &applications).parse().poly;
-  } catch (const ParseError& e) {
-    throw ParseError(e.what(), e.column + static_cast<int>(offset));
-  }
-}
-
-}  // namespace
-
-model::Polynomial parse_equation(std::string_view text, const std::vector<std::string>& variables,
-                                 std::vector<model::Application>& applications) {
-  size_t eq = std::string_view::npos;
-  for (size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '<' || text[i] == '>')
-      throw ParseError("a comparison in an equation: inequalities go under 'inequalities'", static_cast<int>(i));
-    if (text[i] != '=') continue;
-    if (eq != std::string_view::npos) throw ParseError("more than one '=' in an equation", static_cast<int>(i));
-    eq = i;
-  }
-  if (eq == std::string_view::npos) return parse_side(text, 0, variables, applications);
-  const Polynomial lhs = parse_side(text.substr(0, eq), 0, variables, applications);
-  const Polynomial rhs = parse_side(text.substr(eq + 1), eq + 1, variables, applications);
-  return lhs - rhs;
-}
-
-model::Inequality parse_inequality(std::string_view text, const std::vector<std::string>& variables,
-                                   std::vector<model::Application>& applications) {
-  size_t op = std::string_view::npos;
-  size_t width = 1;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (c == '=' && (i == 0 || (text[i - 1] != '<' && text[i - 1] != '>')))
-      throw ParseError(i + 1 < text.size() && (text[i + 1] == '<' || text[i + 1] == '>')
-                           ? "write <= or >=, not =< or =>"
-                           : "'=' in an inequality (write <=, >=, < or >; equations go under 'equations')",
-                       static_cast<int>(i));
-    if (c != '<' && c != '>') continue;
-    if (op != std::string_view::npos)
-      throw ParseError("more than one comparison (write a chain a <= x <= b as two inequalities)", static_cast<int>(i));
-    op = i;
-    width = i + 1 < text.size() && text[i + 1] == '=' ? 2 : 1;
-  }
-  if (op == std::string_view::npos) throw ParseError("no comparison: an inequality needs <=, >=, < or >", 0);
-  const Polynomial lhs = parse_side(text.substr(0, op), 0, variables, applications);
-  const Polynomial rhs = parse_side(text.substr(op + width), op + width, variables, applications);
-  model::Inequality c;
-  c.g = text[op] == '<' ? lhs - rhs : rhs - lhs;
-  c.strict = width == 1;
-  c.name = std::string(trim(text));
-  return c;
-}
-
-Interval parse_constant(std::string_view text) {
+Interval parse_constant(std::string_view text, IntervalConstants* intervals) {
   static const std::vector<std::string> none;
-  return Parser(text, none).parse().constant();
+  return Parser(text, none, nullptr, intervals).parse().constant();
 }
 
 bool is_valid_variable_name(std::string_view name) {

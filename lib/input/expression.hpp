@@ -10,6 +10,7 @@
 //   unary   := ('-' | '+') unary | power
 //   power   := primary ('^' unary)?          right-associative: 2^3^2 = 2^9
 //   primary := number | 'pi' | variable | function '(' expr ')' | '(' expr ')'
+//            | '[' expr ',' expr ']'       an interval constant, where `intervals` is given
 //   number  := digits ['.' digits] | '.' digits, then optionally [eE][+-]digits
 //   function: sin cos tan asin acos atan sqrt exp log, of constant arguments only.
 // Exponents are exact non-negative integers (at most kMaxExponent); divisors are constant
@@ -18,6 +19,10 @@
 // parse_with_functions also admits sin, cos, tan and sqrt of expressions with variables,
 // and exponents k + 1/2 (x^(1/2) is sqrt(x)); they are kept as model::Application for
 // model::lift, which turns them into polynomial equations in new unknowns.
+//
+// An interval constant [a, b] (constant ends, a <= b) is the interval from the lower end of
+// a's enclosure to the upper end of b's: each use is one interval coefficient, standing for
+// every value in it (docs/verification.md says what a certified root then means).
 #include "model/lifting.hpp"
 #include "model/polynomial.hpp"
 
@@ -29,6 +34,10 @@
 namespace linkbox::input {
 
 inline constexpr int kMaxExponent = 1000;
+
+// The genuine interval constants a text uses: each distinct literal "[a, b]" as written,
+// unless it is a point (both ends the same text, or the same double).
+using IntervalConstants = std::vector<std::string>;
 
 // what() is the bare message; `column` is the 0-based byte offset in the parsed text.
 struct ParseError : std::runtime_error {
@@ -43,21 +52,26 @@ model::Polynomial parse_polynomial(std::string_view text, const std::vector<std:
 // Like parse_polynomial, but sin, cos, tan and sqrt of expressions with variables (and
 // exponents k + 1/2) become applications: each distinct one is appended to `applications`
 // once (an equal one already there is reused) and stands for variable
-// variables.size() + its index.
+// variables.size() + its index. With `intervals`, interval constants are allowed and listed
+// there (null: they are an error).
 model::Polynomial parse_with_functions(std::string_view text, const std::vector<std::string>& variables,
-                                       std::vector<model::Application>& applications);
+                                       std::vector<model::Application>& applications,
+                                       IntervalConstants* intervals = nullptr);
 
 // An equation "lhs = rhs" (lhs - rhs = 0) or an expression (= 0), with functions as above.
 model::Polynomial parse_equation(std::string_view text, const std::vector<std::string>& variables,
-                                 std::vector<model::Application>& applications);
+                                 std::vector<model::Application>& applications,
+                                 IntervalConstants* intervals = nullptr);
 
 // "lhs <= rhs", ">=", "<" or ">" as g <= 0 (strict for < and >), g = lhs - rhs (or rhs - lhs),
 // with functions as above. `name` of the result is the text.
 model::Inequality parse_inequality(std::string_view text, const std::vector<std::string>& variables,
-                                   std::vector<model::Application>& applications);
+                                   std::vector<model::Application>& applications,
+                                   IntervalConstants* intervals = nullptr);
 
-// Parses a constant expression such as "pi/2", "acos(-1/3)" or "-0.7448995469549714".
-Interval parse_constant(std::string_view text);
+// Parses a constant expression such as "pi/2", "acos(-1/3)" or "-0.7448995469549714"; with
+// `intervals`, one that uses interval constants too (its value encloses every value).
+Interval parse_constant(std::string_view text, IntervalConstants* intervals = nullptr);
 
 // Whether `name` may be used as a variable name in an expression (identifier syntax, not a
 // constant or function name).

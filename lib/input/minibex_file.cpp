@@ -1,31 +1,38 @@
 // The Minibex subset (IbexSolve's "The Minibex Language"):
 //
 //   Constants                                  // optional block
-//     a = 0.25;  n = 4;
-//     c[3] = (1; 2.5; -a);                     // a vector: its values in parentheses
+//     a = 0.25;  n = 4;  f in 0;               // 'in' a number: a plain constant
+//     c in [0.9, 1.1];                         // an interval constant
+//     w[3] = (1; 2.5; -a);                     // a vector: its values in parentheses
 //   Variables
 //     x in [-1, 1];  y in [0, pi/2], v[n] in [-10, 10];   // ';' or ',' between declarations
 //   Constraints
-//     x^2 + sqr(y) = 1;
-//     v(1)*v[1] - c(2)*x = a;                  // v(i) counts from 1, v[i] from 0
+//     x^2 + sqr(y) = c;
+//     v(1)*v[1] - w(2)*sin(x) = a;             // v(i) counts from 1, v[i] from 0
+//     x + y <= 1;                              // also >=, < and >
 //   end
 //
-// Expressions: numbers, pi, constants, + - * / ^ and sqr; sqrt exp ln sin cos tan asin acos
-// atan as far as linkbox's equations take them (today: of constant arguments). Precedence and
-// associativity are Minibex's: '^' associates to the left, and a unary minus takes the whole
-// product after it. Comments: '//' and '/* */'. Each variable needs a bounded domain (linkbox
-// searches a box); the n components of a vector x[n] become the variables x_1 .. x_n.
+// Expressions: numbers, pi, constants, intervals [a, b], + - * / ^ and sqr; sqrt exp ln sin
+// cos tan asin acos atan as far as linkbox's equations take them: of constants, and sin, cos,
+// tan and sqrt of variables too, lifted as in TOML cases (model/lifting.hpp). An interval
+// constant whose ends are the same number is that number; a genuine one is an interval
+// coefficient wherever it is used, and is refused in domains, sizes and indices. Precedence
+// and associativity are Minibex's: '^' associates to the left, and a unary minus takes the
+// whole product after it. Comments: '//' and '/* */'. Each variable needs a bounded domain
+// (linkbox searches a box; an unbounded one is refused with a suggested bound); the n
+// components of a vector x[n] become the variables x_1 .. x_n.
 //
-// Not supported, each an error naming it: matrices, interval constants ('in'), per-component
-// domains, 'Parameters', 'function', 'Minimize', 'for' loops, inequalities, other functions,
-// vector operations, 'oo'.
+// Not supported, each an error naming it: matrices, vector interval constants, per-component
+// domains, 'Parameters', 'function', 'Minimize', 'for' loops, constraints 'in' an interval,
+// other functions, vector operations, 'oo' outside domains, a system of inequalities alone.
 #include "input/minibex_file.hpp"
 
 #include <cctype>
 #include <map>
 #include <set>
 
-#include "input/peer_syntax.hpp"
+#include "input/peer_system.hpp"
+#include "input/unbounded_domain.hpp"
 
 namespace linkbox::input {
 
@@ -81,7 +88,7 @@ class Parser {
  public:
   Parser(std::string_view text, const std::string& file)
       : t_(peer::tokenize(text, file, peer::LexerRules{}), file), file_(file) {
-    c_.format = "Minibex";
+    d_.c.format = "Minibex";
   }
 
   PeerCase parse() {
@@ -103,7 +110,7 @@ class Parser {
     t_.next();
     constraints();
     if (!t_.at_end()) t_.fail_here("unexpected " + peer::describe(t_.peek()) + " after 'end'");
-    return std::move(c_);
+    return peer::finish(std::move(d_), file_);
   }
 
  private:
@@ -156,11 +163,10 @@ class Parser {
   std::string declare_constant() {
     const Token name = new_name("constant");
     const size_t size = dimension(name.text);
-    if (keyword("in"))
-      t_.fail_here("constant '" + name.text +
-                   "' is given an interval ('in'): interval constants are not supported; give its value with '='");
-    if (!t_.at_symbol("="))
-      t_.fail_here("expected '=' and the value of constant '" + name.text + "' (or 'Variables'), found " +
+    if (size && keyword("in"))
+      t_.fail_here("vector constant '" + name.text + "' is given 'in': only scalar interval constants are supported");
+    if (!t_.at_symbol("=") && !keyword("in"))
+      t_.fail_here("expected '=' or 'in' and the value of constant '" + name.text + "' (or 'Variables'), found " +
                    peer::describe(t_.peek()));
     t_.next();
     Symbol s{true, name.line, size, {}, {}};
@@ -177,9 +183,14 @@ class Parser {
         t_.fail(name.line, "vector " + what + " is declared with " + std::to_string(size) + " components but has " +
                                std::to_string(s.values.size()) + " values");
     }
-    for (size_t i = 0; i < s.values.size(); ++i)
+    for (size_t i = 0; i < s.values.size(); ++i) {
+      IntervalConstants intervals;
       peer::constant_value(*s.values[i], size == 0 ? what : "component " + std::to_string(i + 1) + " of " + what,
-                           file_);
+                           file_, &intervals);
+      if (s.values[i]->kind == Node::Kind::Range)
+        d_.c.notes.push_back("Minibex " + what + " is the interval " + peer::write(*s.values[i], file_, name.line).text +
+                             ", written out where it is used.");
+    }
     symbols_.emplace(name.text, std::move(s));
     return name.text;
   }
@@ -190,25 +201,27 @@ class Parser {
     if (!keyword("in") && !t_.at_symbol(";") && !t_.at_symbol(","))
       t_.fail(name.line, "expected a variable declaration ('x in [lower, upper];') or 'Constraints', found '" +
                              name.text + "' followed by " + peer::describe(t_.peek()));
+    // Minibex's default domain is (-oo, +oo).
     if (!keyword("in"))
-      t_.fail(name.line, "variable '" + name.text + "' has no domain: linkbox searches a bounded box (write '" +
-                             name.text + (size ? "[" + std::to_string(size) + "]" : "") + " in [lower, upper]')");
+      t_.fail(name.line, "variable '" + name.text + "' has no domain (Minibex's default is [-oo, +oo]): " +
+                             unbounded_domain_advice(true, true, 0));
     t_.next();
     if (t_.at_symbol("("))
       t_.fail_here("per-component domains ('in (...; ...)') are not supported: give one interval for all of '" +
                    name.text + "'");
     t_.expect_symbol("[", "'[' opening the domain of '" + name.text + "'");
-    const NodePtr lo = constant_expression("the lower bound of '" + name.text + "'");
+    const NodePtr lo = bound("the lower bound of '" + name.text + "'");
     t_.expect_symbol(",", "',' between the bounds of '" + name.text + "'");
-    const NodePtr hi = constant_expression("the upper bound of '" + name.text + "'");
+    const NodePtr hi = bound("the upper bound of '" + name.text + "'");
     t_.expect_symbol("]", "']' closing the domain of '" + name.text + "'");
+    if (!lo || !hi) peer::fail_unbounded(name.text, lo, hi, "oo", name.line, file_);
 
     Symbol s{false, name.line, size, {}, {}};
     if (size == 0) {
       s.names.push_back(name.text);
     } else {
       for (size_t i = 1; i <= size; ++i) s.names.push_back(name.text + "_" + std::to_string(i));
-      c_.notes.push_back("Minibex vector " + name.text + "[" + std::to_string(size) + "] is " + s.names.front() +
+      d_.c.notes.push_back("Minibex vector " + name.text + "[" + std::to_string(size) + "] is " + s.names.front() +
                          " .. " + s.names.back() + " (" + name.text + "(i) and " + name.text + "[i-1] in the source).");
     }
     for (size_t i = 0; i < s.names.size(); ++i) {
@@ -218,16 +231,27 @@ class Parser {
           size == 0 ? "variable '" + n + "'" : "component " + std::to_string(i + 1) + " of vector '" + name.text + "'";
       auto [it, fresh] = taken_.emplace(n, origin + " (line " + std::to_string(name.line) + ")");
       if (!fresh) t_.fail(name.line, origin + " clashes with " + it->second + ": linkbox names both '" + n + "'");
-      peer::add_variable(c_, n, *lo, *hi, name.line, file_);
+      peer::add_variable(d_, n, *lo, *hi, name.line, file_);
     }
     symbols_.emplace(name.text, std::move(s));
     return name.text;
+  }
+
+  // A domain's end: null for an infinite one ("-oo", "+oo" or "oo").
+  NodePtr bound(const std::string& what) {
+    const size_t sign = t_.at_symbol("-") || t_.at_symbol("+") ? 1 : 0;
+    const Token& tok = t_.peek(sign);
+    if (tok.kind != Token::Kind::Identifier || tok.text != "oo" || !(t_.at_symbol(",", sign + 1) || t_.at_symbol("]", sign + 1)))
+      return constant_expression(what);
+    for (size_t k = 0; k <= sign; ++k) t_.next();
+    return nullptr;
   }
 
   // ---- constraints
 
   void constraints() {
     if (keyword("end")) t_.fail_here("no constraints between 'Constraints' and 'end'");
+    const int first = t_.peek().line;
     for (int number = 1;; ++number) {
       if (keyword("for")) t_.fail_here("'for' loops are not supported; write the constraints out one by one");
       if (t_.at_end()) t_.fail(t_.previous_line(), "missing 'end' after the constraints");
@@ -238,22 +262,33 @@ class Parser {
       if (!semicolon) missing_semicolon("constraint " + std::to_string(number));
     }
     t_.next();  // end
+    if (d_.raw.equations.empty())
+      t_.fail(first, "every constraint is an inequality: linkbox enumerates the roots of equations (a region "
+                     "defined by inequalities alone is not supported)");
   }
 
   void constraint(int number) {
     const std::string label = "constraint " + std::to_string(number);
     const int line = t_.peek().line;
     const NodePtr lhs = expression();
-    const Token& op = t_.peek();
-    if (op.kind == Token::Kind::Symbol && (op.text == "<=" || op.text == ">=" || op.text == "<" || op.text == ">"))
-      t_.fail_here("inequality '" + op.text + "' in " + label +
-                   " is not supported: a polynomial case has equations only");
-    if (!t_.accept_symbol("="))
-      t_.fail_here("expected an operator or '=' in " + label + ", found " + peer::describe(op));
+    const Token op = t_.peek();
+    const bool inequality = is_inequality(op);
+    if (keyword("in"))
+      t_.fail_here("constraints 'in' an interval (thick equations) are not supported; write two inequalities");
+    if (!inequality && !t_.accept_symbol("="))
+      t_.fail_here("expected an operator, a comparison or '=' in " + label + ", found " + peer::describe(op));
+    if (inequality) t_.next();
     const NodePtr rhs = expression();
-    if (t_.at_symbol("=") || t_.at_symbol("<=") || t_.at_symbol(">=") || t_.at_symbol("<") || t_.at_symbol(">"))
+    if (t_.at_symbol("=") || is_inequality(t_.peek()))
       t_.fail_here("a second comparison in " + label + " (a = b = c is not Minibex)");
-    peer::add_equation(c_, lhs, rhs, line, label, file_);
+    if (inequality)
+      peer::add_inequality(d_, lhs, op.text, rhs, line, label);
+    else
+      peer::add_equation(d_, lhs, rhs, line, label, file_);
+  }
+
+  static bool is_inequality(const Token& t) {
+    return t.kind == Token::Kind::Symbol && (t.text == "<=" || t.text == ">=" || t.text == "<" || t.text == ">");
   }
 
   [[noreturn]] void missing_semicolon(const std::string& after) {
@@ -312,10 +347,23 @@ class Parser {
       t_.expect_symbol(")", "')' closing the '(' on line " + std::to_string(tok.line));
       return e;
     }
-    if (tok.text == "[") t_.fail(tok.line, "intervals ('[a, b]') are supported only as variable domains");
+    if (tok.text == "[") return interval(tok.line);
     if (tok.text == "#") t_.fail(tok.line, "hexadecimal numbers ('#...') are not supported");
     if (tok.text == "<") t_.fail(tok.line, "balls ('<mid, radius>') are not supported");
     t_.fail(tok.line, "expected a number, a name or '(', found " + peer::describe(tok));
+  }
+
+  // "[a, b]" (the '[' read): an interval constant, or a where the expression grammar takes
+  // it for a point (so that it may bound a domain).
+  NodePtr interval(int line) {
+    const NodePtr lo = constant_expression("the lower end of an interval");
+    t_.expect_symbol(",", "',' between the ends of the interval");
+    const NodePtr hi = constant_expression("the upper end of an interval");
+    t_.expect_symbol("]", "']' closing the '[' on line " + std::to_string(line));
+    const NodePtr range = peer::range(lo, hi, line);
+    IntervalConstants genuine;
+    peer::constant_value(*range, "the interval", file_, &genuine);
+    return genuine.empty() ? lo : range;
   }
 
   NodePtr identifier(const Token& tok) {
@@ -375,7 +423,7 @@ class Parser {
 
   peer::Tokens t_;
   const std::string& file_;
-  PeerCase c_;
+  peer::Draft d_;
   std::map<std::string, Symbol, std::less<>> symbols_;
   std::map<std::string, std::string> taken_;  // linkbox variable name -> where it comes from
   int depth_ = 0;

@@ -1,8 +1,8 @@
 #pragma once
 // Models written for the peers (IbexSolve's Minibex .bch, CuikSuite's .cuik), read as a
-// polynomial system. Next to the system the readers keep its text in linkbox's expression
-// grammar, which the converter (to_toml.hpp) writes out: TOML cases stay rigorous only if
-// decimals are written as decimals, and an interval coefficient cannot be written back.
+// polynomial case, functions of variables lifted as in TOML cases (model/lifting.hpp). Next to
+// the system the readers keep its text in linkbox's expression grammar, which the converter
+// (to_toml.hpp) writes out: TOML cases stay rigorous only if decimals are written as decimals.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,13 +14,15 @@ namespace linkbox::input {
 struct PeerCase {
   std::string format;  // "Minibex" or "CuikSuite"
   model::System system;
-  // Parallel to system.variables: the domain's ends as constant expressions.
+  // The case's own variables, in order, with the domain's ends as constant expressions.
   struct Bounds {
-    std::string lower, upper;
+    std::string name, lower, upper;
   };
   std::vector<Bounds> bounds;
-  // Parallel to system.equations: each equation as "expression" (= 0).
+  // The case's equations as written, each "expression" (= 0), and its inequalities
+  // ("lhs <= rhs"; >=, < or >).
   std::vector<std::string> equations;
+  std::vector<std::string> inequalities;
   // Said once in the converted file's header (how vector elements were named, ...).
   std::vector<std::string> notes;
 };

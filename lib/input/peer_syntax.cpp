@@ -2,11 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <cstdio>
 
-#include "input/expression.hpp"
-#include "input/toml_reader.hpp"
 
 namespace linkbox::input::peer {
 
@@ -176,6 +173,9 @@ NodePtr power(NodePtr base, NodePtr exponent, int line) {
 }
 NodePtr negate(NodePtr x, int line) { return make(Node::Kind::Negate, line, "", {std::move(x)}); }
 NodePtr constant_use(NodePtr value, int line) { return make(Node::Kind::Constant, line, "", {std::move(value)}); }
+NodePtr range(NodePtr lower, NodePtr upper, int line) {
+  return make(Node::Kind::Range, line, "", {std::move(lower), std::move(upper)});
+}
 
 NodePtr chain(Node::Kind kind, std::vector<NodePtr> args, std::string ops, int line) {
   if (args.size() == 1) return std::move(args[0]);
@@ -284,6 +284,14 @@ class Writer {
         }
         break;
       }
+      case Node::Kind::Range:
+        mark(n.line);
+        append("[");
+        put(*n.args[0], kAny);
+        append(", ");
+        put(*n.args[1], kAny);
+        append("]");
+        break;
       case Node::Kind::Constant:
         // Errors inside a substituted constant are reported at the line that uses it.
         mark(n.line);
@@ -337,62 +345,14 @@ Text write_equation(const NodePtr& lhs, const NodePtr& rhs, const std::string& f
   return write(*difference, file, line);
 }
 
-// ---------------------------------------------------------------------------------------
-
-Interval constant_value(const Node& n, const std::string& what, const std::string& file) {
-  const Text t = write(n, file, n.line);
-  try {
-    return parse_constant(t.text);
-  } catch (const ParseError& e) {
-    throw InputError(file, t.line_at(static_cast<size_t>(e.column), n.line),
-                     what + " (read as " + quote_text(t.text) + "): " + e.what());
-  }
-}
-
-long integer_value(const Node& n, long min, long max, const std::string& what, const std::string& file) {
-  const Interval x = constant_value(n, what, file);
-  const double v = x.lower();
-  if (v != x.upper() || std::floor(v) != v) throw InputError(file, n.line, what + " must be an integer");
-  if (v < static_cast<double>(min) || v > static_cast<double>(max))
-    throw InputError(file, n.line,
-                     what + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", found " +
-                         std::to_string(static_cast<long long>(v)));
-  return static_cast<long>(v);
-}
-
-void add_variable(PeerCase& c, const std::string& name, const Node& lower, const Node& upper, int line,
-                  const std::string& file) {
-  const Interval lo = constant_value(lower, "lower bound of variable '" + name + "'", file);
-  const Interval hi = constant_value(upper, "upper bound of variable '" + name + "'", file);
-  // Outward, as for TOML domains: the lower end of the lower bound's enclosure, the upper end
-  // of the upper one's.
-  if (lo.lower() > hi.upper())
-    throw InputError(file, line, "empty domain of variable '" + name + "': lower bound exceeds upper bound");
-  c.system.variables.push_back(model::Variable{name, Interval(lo.lower(), hi.upper())});
-  c.bounds.push_back(PeerCase::Bounds{write(lower, file, line).text, write(upper, file, line).text});
-}
-
-void add_equation(PeerCase& c, const NodePtr& lhs, const NodePtr& rhs, int line, const std::string& label,
-                  const std::string& file) {
-  Text t = write_equation(lhs, rhs, file, line);
-  model::Polynomial p;
-  try {
-    p = parse_polynomial(t.text, c.system.names());
-  } catch (const ParseError& e) {
-    throw InputError(file, t.line_at(static_cast<size_t>(e.column), line),
-                     label + " (read as " + quote_text(t.text) + "): " + e.what());
-  }
-  if (p.variables().empty()) throw InputError(file, line, label + " involves no variable (it is constant)");
-  c.system.equations.push_back(std::move(p));
-  c.system.equation_names.emplace_back();
-  c.equations.push_back(std::move(t.text));
-}
-
-void check_variable_name(const std::string& name, int line, const std::string& file) {
-  if (!is_valid_variable_name(name))
-    throw InputError(file, line,
-                     "variable name '" + name +
-                         "' is reserved in linkbox's equations (a constant or function name there); rename it");
+Text write_comparison(const NodePtr& lhs, const std::string& op, const NodePtr& rhs, const std::string& file,
+                      int line) {
+  Text t = write(*lhs, file, line);
+  const Text right = write(*rhs, file, line);
+  t.text += " " + op + " ";
+  for (auto& [at, l] : right.lines) t.lines.emplace_back(t.text.size() + at, l);
+  t.text += right.text;
+  return t;
 }
 
 }  // namespace linkbox::input::peer

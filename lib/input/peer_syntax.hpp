@@ -5,7 +5,7 @@
 // (Minibex's unary minus takes a whole product, CuikSuite's binds tighter than '^'; both
 // associate '^' to the left) and written back as text in linkbox's grammar
 // (input/expression.hpp) with the parentheses that grammar needs to build the same tree. The
-// text then goes through parse_polynomial / parse_constant, so decimals are enclosed as
+// text then goes through that grammar's parser (peer_system.hpp), so decimals are enclosed as
 // written and constants are folded rigorously, exactly as in TOML cases; and the same text is
 // what the converter writes, so a converted case reads back to the identical system.
 #include <memory>
@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "input/input_error.hpp"
-#include "input/peer_case.hpp"
 
 namespace linkbox::input::peer {
 
@@ -100,6 +99,7 @@ struct Node {
     Sum,       // args[0] (+|-) args[1] ...; ops[i] is the sign before args[i] ('+' for i = 0)
     Product,   // args[0] (*|/) args[1] ...; ops[i] is the operator before args[i]
     Constant,  // a use of a named constant: args[0] is its value, `line` the use
+    Range,     // an interval constant [args[0], args[1]]
   };
   Kind kind;
   int line;
@@ -115,6 +115,7 @@ NodePtr call(std::string function, NodePtr arg, int line);
 NodePtr power(NodePtr base, NodePtr exponent, int line);
 NodePtr negate(NodePtr x, int line);
 NodePtr constant_use(NodePtr value, int line);
+NodePtr range(NodePtr lower, NodePtr upper, int line);
 // A left-associative chain "a op b op c ..." (Sum or Product) as one node, not n nested ones;
 // ops[i] is the operator before args[i] (ops[0] is '+' or '*'). One operand is returned as is.
 NodePtr chain(Node::Kind kind, std::vector<NodePtr> args, std::string ops, int line);
@@ -169,24 +170,8 @@ Text write(const Node& n, const std::string& file, int line);
 // lhs = rhs as the text of "expression = 0": lhs alone when rhs is a literal zero.
 Text write_equation(const NodePtr& lhs, const NodePtr& rhs, const std::string& file, int line);
 
-// ---------------------------------------------------------------------------------------
-// Into the system (every failure an InputError at the source line)
-
-// `what` names the value in messages ("bound of variable 'x'", "constant 'a'").
-Interval constant_value(const Node& n, const std::string& what, const std::string& file);
-
-// An exact integer constant in [min, max] (vector sizes and indices).
-long integer_value(const Node& n, long min, long max, const std::string& what, const std::string& file);
-
-// Declares a variable (name already checked unique); `line` is its declaration.
-void add_variable(PeerCase& c, const std::string& name, const Node& lower, const Node& upper, int line,
-                  const std::string& file);
-
-// Adds "lhs = rhs"; `label` names it in messages ("constraint 3").
-void add_equation(PeerCase& c, const NodePtr& lhs, const NodePtr& rhs, int line, const std::string& label,
-                  const std::string& file);
-
-// Fails unless `name` can be used as a variable in linkbox's equations.
-void check_variable_name(const std::string& name, int line, const std::string& file);
+// "lhs op rhs" for a comparison op (<=, >=, < or >).
+Text write_comparison(const NodePtr& lhs, const std::string& op, const NodePtr& rhs, const std::string& file,
+                      int line);
 
 }  // namespace linkbox::input::peer

@@ -13,26 +13,26 @@
 //
 // Numbers are TOML integers, floats (enclosed as the decimal written) or constant expression
 // strings; equations and inequalities use the grammar of input/expression.hpp, with sin, cos,
-// tan and sqrt of variables lifted by model::lift (model/lifting.hpp says what is accepted).
-// Domains are bounded: an infinite bound is rejected with a suggested finite one.
+// tan and sqrt of variables lifted by model::lift (model/lifting.hpp says what is accepted)
+// and interval constants "[a, b]" as interval coefficients. Domains are bounded: an infinite
+// bound is rejected with a suggested finite one.
 #include "input/polynomial_file.hpp"
 
 #include "input/expression.hpp"
+#include "input/source_lines.hpp"
 #include "input/toml_reader.hpp"
+#include "input/unbounded_domain.hpp"
 #include "model/lifting.hpp"
 
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <map>
 
 namespace linkbox::input {
 
 namespace {
 
-// An infinite bound ([-inf, 1], or "inf" as a string): linkbox encloses roots in a bounded box
-// only, so the message suggests a finite bound rather than inventing one (a change of
-// variables onto a bounded interval would make the certificates speak of another system).
+// An infinite bound ([-inf, 1], or "inf" as a string): refused with a suggested finite one.
 void reject_unbounded(const TomlReader& r, const toml::node& d, const std::string& what) {
   const toml::array* a = d.as_array();
   if (!a || a->size() != 2) return;
@@ -59,16 +59,8 @@ void reject_unbounded(const TomlReader& r, const toml::node& d, const std::strin
     if (inf) infinite = infinite < 0 ? static_cast<int>(1 << k) : infinite | static_cast<int>(1 << k);
   }
   if (infinite < 0) return;
-  const double m = std::pow(10.0, std::ceil(std::log10(std::max(1000.0, 10 * finite_magnitude))));
-  char bound[64];
-  std::snprintf(bound, sizeof bound, "%g", m);
-  std::string lo = "-" + std::string(bound), hi = bound;
-  if (!(infinite & 1)) lo = "<its lower bound>";
-  if (!(infinite & 2)) hi = "<its upper bound>";
-  r.fail(d, what + " must be finite, found " + written +
-                ": linkbox encloses roots in a bounded domain only (unbounded domains are not mapped onto bounded "
-                "ones). Give finite bounds that every root of interest satisfies, e.g. [" + lo + ", " + hi +
-                "]: a generous bound costs a few more bisections, a root beyond it is not reported");
+  r.fail(d, what + " must be finite, found " + written + ": " +
+                unbounded_domain_advice(infinite & 1, infinite & 2, finite_magnitude));
 }
 
 model::Variable read_variable(const TomlReader& r, const toml::node& n) {
@@ -90,11 +82,6 @@ model::Variable read_variable(const TomlReader& r, const toml::node& n) {
   return v;
 }
 
-// Lines of what a LiftError may point at.
-struct Lines {
-  std::vector<int> variable, equation, inequality, application;
-};
-
 std::vector<std::string> names_of(const model::RawSystem& s) {
   std::vector<std::string> n;
   for (auto& v : s.variables) n.push_back(v.name);
@@ -104,7 +91,7 @@ std::vector<std::string> names_of(const model::RawSystem& s) {
 // One entry of `equations` or `inequalities`: a string, or a table { name, <key> }.
 template <class Parse>
 void read_constraint(const TomlReader& r, const toml::node& n, const char* kind, const char* key, size_t number,
-                     model::RawSystem& s, Lines& lines, std::string& name, Parse&& parse) {
+                     model::RawSystem& s, SourceLines& lines, std::string& name, Parse&& parse) {
   const toml::node* text_node = &n;
   if (auto* t = n.as_table()) {
     r.only_keys(*t, {"name", key}, std::string("an ") + kind);
@@ -120,7 +107,7 @@ void read_constraint(const TomlReader& r, const toml::node& n, const char* kind,
     r.fail(*text_node,
            label + " " + quote_text(text) + ": " + e.what() + " (column " + std::to_string(e.column) + ")");
   }
-  while (lines.application.size() < s.applications.size()) lines.application.push_back(TomlReader::line_of(*text_node));
+  lines.place_applications(s.applications.size(), TomlReader::line_of(*text_node));
 }
 
 }  // namespace
@@ -128,7 +115,7 @@ void read_constraint(const TomlReader& r, const toml::node& n, const char* kind,
 model::System read_polynomial(const toml::table& root, const TomlReader& r) {
   r.only_keys(root, {"kind", "name", "description", "variables", "equations", "inequalities"}, "a polynomial case");
   model::RawSystem s;
-  Lines lines;
+  SourceLines lines;
   std::map<std::string, int> declared_on;
   const toml::array& vars = r.array(r.required(root, "variables", "variables"), "variables");
   if (vars.empty()) r.fail(vars, "no variables");
@@ -146,7 +133,7 @@ model::System read_polynomial(const toml::table& root, const TomlReader& r) {
   for (size_t i = 0; i < eqs.size(); ++i) {
     std::string name;
     read_constraint(r, eqs[i], "equation", "equation", i + 1, s, lines, name, [&](const std::string& text) {
-      s.equations.push_back(parse_equation(text, names, s.applications));
+      s.equations.push_back(parse_equation(text, names, s.applications, &s.interval_constants));
       return s.equations.back().variables().empty();
     });
     s.equation_names.push_back(name);
@@ -157,7 +144,7 @@ model::System read_polynomial(const toml::table& root, const TomlReader& r) {
     for (size_t i = 0; i < list.size(); ++i) {
       std::string name;
       read_constraint(r, list[i], "inequality", "inequality", i + 1, s, lines, name, [&](const std::string& text) {
-        s.inequalities.push_back(parse_inequality(text, names, s.applications));
+        s.inequalities.push_back(parse_inequality(text, names, s.applications, &s.interval_constants));
         return s.inequalities.back().g.variables().empty();
       });
       if (!name.empty()) s.inequalities.back().name = name + ": " + s.inequalities.back().name;
@@ -167,12 +154,7 @@ model::System read_polynomial(const toml::table& root, const TomlReader& r) {
   try {
     return model::lift(s);
   } catch (const model::LiftError& e) {
-    int line = 0;
-    if (e.variable >= 0) line = lines.variable.at(e.variable);
-    else if (e.application >= 0) line = lines.application.at(e.application);
-    else if (e.equation >= 0) line = lines.equation.at(e.equation);
-    else if (e.inequality >= 0) line = lines.inequality.at(e.inequality);
-    r.fail(line, e.what());
+    r.fail(lines.of(e), e.what());
   }
 }
 

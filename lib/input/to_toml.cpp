@@ -70,12 +70,15 @@ std::string to_toml(const PeerCase& c, const std::string& name, const std::strin
   out += "name = " + toml_string(name) + "\n";
   out += "description = " + toml_string(source + " (" + c.format + "), converted by linkbox") + "\n";
   out += "variables = [\n";
-  for (size_t i = 0; i < c.system.variables.size(); ++i)
-    out += "  { name = " + toml_string(c.system.variables[i].name) + ", domain = [" + bound(c.bounds[i].lower) + ", " +
-           bound(c.bounds[i].upper) + "] },\n";
+  for (auto& b : c.bounds)
+    out += "  { name = " + toml_string(b.name) + ", domain = [" + bound(b.lower) + ", " + bound(b.upper) + "] },\n";
   out += "]\n";
   out += "equations = [\n";
   for (auto& e : c.equations) out += "  " + toml_string(e) + ",\n";
+  out += "]\n";
+  if (c.inequalities.empty()) return out;
+  out += "inequalities = [\n";
+  for (auto& q : c.inequalities) out += "  " + toml_string(q) + ",\n";
   out += "]\n";
   return out;
 }

@@ -1,9 +1,9 @@
 #pragma once
 // The converter behind `linkbox convert`: a model in a peer's format (.bch, .cuik) as a TOML
 // polynomial case that read_case reads back to the same system (same variables, domains and
-// equations, coefficient for coefficient). Constants are written out where they are used and
-// decimals as written, so the TOML case is exactly as rigorous as the source; a rounded double
-// could not be (and an interval coefficient cannot be written back at all).
+// equations, coefficient for coefficient). Constants are written out where they are used,
+// decimals as written and interval constants as "[a, b]", so the TOML case is exactly as
+// rigorous as the source; a rounded double could not be.
 #include <string>
 #include <string_view>
 

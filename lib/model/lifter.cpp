@@ -285,15 +285,17 @@ Interval Lifter::argument_range(int k) const {
 }  // namespace detail
 
 System lift(const RawSystem& raw) {
+  System s;
   if (raw.applications.empty()) {
-    System s;
     s.variables = raw.variables;
     s.equations = raw.equations;
     s.equation_names = raw.equation_names;
     s.inequalities = raw.inequalities;
-    return s;
+  } else {
+    s = detail::Lifter(raw).run();
   }
-  return detail::Lifter(raw).run();
+  s.interval_constants = raw.interval_constants;
+  return s;
 }
 
 }  // namespace linkbox::model

@@ -53,6 +53,7 @@ struct RawSystem {
   std::vector<std::string> equation_names;
   std::vector<Inequality> inequalities;
   std::vector<Application> applications;
+  std::vector<std::string> interval_constants;  // as System::interval_constants
 };
 
 // What cannot be lifted. `variable` (declared index), `application`, `equation` or

@@ -89,6 +89,9 @@ struct System {
   // When the case's own variables were lifted (functions of variables, model/lifting.hpp):
   // how they follow from `variables` and back. Null: `variables` are the case's own.
   std::shared_ptr<const Lifting> lifting;
+  // The genuine interval constants the coefficients use (as written, e.g. "[0.9, 1.1]"): the
+  // system is then a family, and its roots are claimed for every value of them.
+  std::vector<std::string> interval_constants;
 
   Box domain() const;
   bool is_multi_affine() const;

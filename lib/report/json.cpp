@@ -236,6 +236,7 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
     // The curve clusters' maps, summed: components, and whether every one is proved.
     j["verification"]["map"] = {{"closed_curves", r.closed_curves}, {"open_arcs", r.open_arcs}, {"proved", r.maps_proved}};
   }
+  if (!r.interval_constants.empty()) j["verification"]["interval_constants"] = r.interval_constants;
   if (r.inequalities) {
     j["verification"]["inequalities"] = r.inequalities;
     j["verification"]["infeasible"] = r.infeasible;

@@ -27,18 +27,23 @@ EXPRESSIONS = [
     "x^2 + y^2 - 1", "x*y - 1/2 - 1e-6", "2^3^2", "-x^2", "pi/2", "acos(-1/3)", "sqrt(2)/2",
     "-0.7448995469549714", "(x + y + z)^3 - 1.5e-3*x", "sin(pi/7)*x - cos(x)", "x = y + 1",
     "x^2 <= y", "x + y > 0.5", "tan(1)", "exp(1) - log(3)*z", "x^(1/2)", ".5e+2", "atan(1)*4 - pi",
+    "[0.9, 1.1]*x^2 - 1", "x <= [1, 2]", "[1/3, 1/3]*y",
 ]
 
 MINIBEX = """Constants
-  a = 0.25;  n = 2;
+  a = 0.25;  n = 2;  f in 0;
+  k in [0.9, 1.1];
   c[3] = (1; 2.5; -a);
 Variables
   x in [-1, 1];  y in [0, pi/2], v[n] in [-10, 10];
+  t in [-pi, pi];
 Constraints
-  x^2 + sqr(y) = 1;
-  v(1)*v[1] - c(2)*x = a;
-  v(2) - sin(a)*y = 0;
-  x - y = ln(2);
+  x^2 + sqr(y) = k;
+  v(1)*v[1] - c(2)*x = a + f;
+  v(2) - sin(a)*y = cos(t);
+  x - y = ln(2) + [-0.1, 0.1]*sin(t);
+  x + y <= 1;
+  sqrt(y) > 0.1;
 end
 """
 
@@ -53,6 +58,7 @@ s : [0, 1]
 [SYSTEM EQS]
 x^2 + y^2 = 1;
 2*x*y - a*s = 0;
+x*y >= -0.5;
 [COORD EQS]
 s - SIN(PI/6)*x = 0;
 [SEARCH]

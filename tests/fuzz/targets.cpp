@@ -109,7 +109,9 @@ void peer(std::string_view text, input::PeerCase (*read)(std::string_view, const
   const input::Case back = input::read_case_text(toml, "converted.toml");  // must not throw
   const auto* system = std::get_if<model::System>(&back.description);
   if (!system || system->variables.size() != c.system.variables.size() ||
-      system->equations.size() != c.system.equations.size())
+      system->equations.size() != c.system.equations.size() ||
+      system->inequalities.size() != c.system.inequalities.size() ||
+      system->interval_constants != c.system.interval_constants)
     throw std::logic_error("fuzz: the converted TOML reads back as another system");
 }
 
