@@ -127,6 +127,7 @@ void check_claims(const json& j, const formulate::Formulation& f, std::vector<Cl
   VerifyReport r;
   r.clusters = std::move(clusters);
   r.inequalities = static_cast<int>(f.natural(0).inequalities.size());
+  r.interval_constants = f.natural(0).interval_constants;
   solve::CaseResult search;
   search.complete = j.at("complete").get<bool>();
   search.stop_reason = j.value("stop_reason", "");

@@ -18,7 +18,7 @@ using namespace linkbox;
 namespace {
 
 test::SolvedCase solve_peer(const std::string& text, const std::string& file, double sigma) {
-  return test::solve_loaded(formulate::load_case_text(text, file), {"hc4", "newton"}, sigma);
+  return test::solve_loaded(formulate::load_case_text(text, file), "hc4,newton", sigma);
 }
 
 bool contains_point(const Box& box, const std::vector<double>& p) {
