@@ -18,7 +18,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
@@ -38,15 +37,6 @@ struct CheckCommand {
   std::string result_file, case_file;
 };
 
-// The case a result names: its path as stored, else the same path from the result's folder
-// (a result moved with its case). The case's SHA-256 then decides whether it is the one.
-std::string stated_case(const nlohmann::json& j, const std::string& result_file) {
-  const std::string stored = j.at("case_file").get<std::string>();
-  if (std::filesystem::exists(stored) || std::filesystem::path(stored).is_absolute()) return stored;
-  const auto beside = std::filesystem::path(result_file).parent_path() / stored;
-  return std::filesystem::exists(beside) ? beside.string() : stored;
-}
-
 void print_trusted(const nlohmann::json& j) {
   std::printf("taken from the result, not re-checked:");
   for (auto& t : verify::trusted_fields())
@@ -65,7 +55,8 @@ int run_check(const CheckCommand& cmd) {
   }
   if (!j.contains("clusters"))
     throw std::invalid_argument(cmd.result_file + ": no certificates (was it run with --no-verify?)");
-  const std::string case_file = cmd.case_file.empty() ? stated_case(j, cmd.result_file) : cmd.case_file;
+  const std::string case_file = cmd.case_file.empty() ? cli::found_beside(j.at("case_file").get<std::string>(), cmd.result_file)
+                                                     : cmd.case_file;
   const formulate::LoadedCase c = formulate::load_case(case_file);
   verify::CheckOutcome out;
   try {

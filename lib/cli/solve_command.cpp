@@ -135,10 +135,7 @@ std::string checkpoint_of(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
   nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("format") || !j.contains("checkpoint")) return file;
-  const std::string named = j.at("checkpoint").get<std::string>();
-  if (std::filesystem::exists(named) || std::filesystem::path(named).is_absolute()) return named;
-  const auto beside = std::filesystem::path(file).parent_path() / std::filesystem::path(named).filename();
-  return std::filesystem::exists(beside) ? beside.string() : named;
+  return found_beside(j.at("checkpoint").get<std::string>(), file);
 }
 
 // FNV-1a of the case file's bytes: a checkpoint is for this exact text.
@@ -186,6 +183,15 @@ void settle_options(SolveCommand& cmd, const formulate::LoadedCase& c, SavedRun&
 }
 
 }  // namespace
+
+std::string found_beside(const std::string& named, const std::string& result_file) {
+  namespace fs = std::filesystem;
+  if (fs::exists(named) || fs::path(named).is_absolute()) return named;
+  const fs::path folder = fs::path(result_file).parent_path();
+  for (const fs::path& p : {folder / named, folder / fs::path(named).filename()})
+    if (fs::exists(p)) return p.string();
+  return named;
+}
 
 void add_solve_flags(CLI::App& app, SolveCommand& s) {
   add_search_flags(app, s);

@@ -26,6 +26,10 @@ struct SolveCommand {
   bool given(const char* flag) const;  // on the command line
 };
 
+// A file a result names (its case, its checkpoint): as written when it exists there (or is
+// absolute), else the same path, or name, in the result's folder (a result moved with it).
+std::string found_beside(const std::string& named, const std::string& result_file);
+
 // The flags of both commands, into `s` (s.app is `app`).
 void add_solve_flags(CLI::App& app, SolveCommand& s);
 
