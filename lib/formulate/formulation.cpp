@@ -15,8 +15,8 @@ const NaturalSystem& Formulation::natural(std::uint64_t chart) const {
   auto& slot = natural_[chart];
   if (!slot) {
     auto sys = std::make_unique<NaturalSystem>(natural_system(chart));
-    if (!sys->unknowns.empty() && sys->equations.size() == sys->unknowns.size())
-      sys->compiled = std::make_shared<const model::CompiledSystem>(sys->equations, sys->unknowns.size());
+    if (!sys->unknowns.empty() && sys->equations.size() + sys->links.size() == sys->unknowns.size())
+      sys->compiled = std::make_shared<const model::CompiledSystem>(sys->equations, sys->links, sys->unknowns.size());
     slot = std::move(sys);
   }
   return *slot;
@@ -24,7 +24,7 @@ const NaturalSystem& Formulation::natural(std::uint64_t chart) const {
 
 NaturalSystem PolynomialFormulation::natural_system(std::uint64_t) const {
   return {system_.equations, system_.names(), system_.domain(), system_.inequalities, {}, nullptr,
-          system_.interval_constants};
+          system_.interval_constants, system_.links};
 }
 
 std::vector<std::string> PolynomialFormulation::output_names() const {
@@ -46,8 +46,11 @@ std::vector<std::string> PolynomialFormulation::model_notes() const {
   std::vector<std::string> notes;
   if (system_.lifting) {
     const size_t declared = system_.lifting->declared.size(), unknowns = system_.variables.size();
+    const size_t links = system_.links.size(), equations = system_.equations.size() + links;
     notes.push_back("lifted: " + std::to_string(declared) + " declared variables -> " + std::to_string(unknowns) +
-                    " unknowns, " + std::to_string(system_.equations.size()) + " equations");
+                    " unknowns, " + std::to_string(equations) + " equations" +
+                    (links ? " (" + std::to_string(links) + (links == 1 ? " link" : " links") + " y = f(a) among them)"
+                           : std::string()));
     for (auto& n : system_.lifting->notes) notes.push_back("  " + n);
   }
   if (!system_.interval_constants.empty()) {
