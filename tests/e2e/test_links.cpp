@@ -46,6 +46,10 @@ TEST_CASE("exp(x) = 2: the certified root encloses ln 2", "[links]") {
   CHECK(sys.links[0].f == model::Elementary::exp);
   check_roots(run, {{logl(2.0L)}});
   CHECK(width(run.roots[0][0]) < 1e-12);
+  // The links contractor ran first, and its counters are its own.
+  REQUIRE(run.j.at("contractors").size() == 3);
+  CHECK(run.j.at("contractors")[0].at("name") == "links");
+  CHECK(run.j.at("contractors")[1].at("name") == "hc4");
 }
 
 TEST_CASE("log, sinh and an argument that is an expression", "[links]") {
