@@ -16,7 +16,7 @@
 // root, so roots are counted in all the variables. Equations (and inequalities, '<=' or '>=')
 // are sums of signed monomials; a monomial is a product of numbers, constants, PI and
 // variables, each with an optional integer power (x^2), and of SIN, COS, TAN, EXP of a
-// constant or of a variable (SIN, COS and TAN of variables are lifted as in TOML cases,
+// constant or of a variable (functions of variables are lifted as in TOML cases,
 // model/lifting.hpp). Constants and range bounds are expressions with + - * / ^, parentheses,
 // PI, SIN COS TAN COT ASIN ACOS ATAN EXP SQRT; there a unary minus binds tighter than '^'
 // (-2^2 is 4), as in CuikSuite. Keywords and section names are case-insensitive. Comments:
@@ -24,8 +24,8 @@
 // accepted and ignored (an order of search does not change the roots).
 //
 // Not supported, each an error naming it: circular ranges ('~'), INF (in a range, refused with
-// a suggested bound), EXP of a variable, matrix equations (TX(...)*RZ(...) = ID), velocity and non-dynamic sections, [SEARCH] MIN, ATAN2,
-// ABS, PWP, PARAMETER, DIFF, comparisons and '?:' in constants.
+// a suggested bound), matrix equations (TX(...)*RZ(...) = ID), velocity and non-dynamic
+// sections, [SEARCH] MIN, ATAN2, ABS, PWP, PARAMETER, DIFF, comparisons and '?:' in constants.
 #include "input/cuik_file.hpp"
 
 #include <cctype>

@@ -50,6 +50,8 @@ class Lifter {
   std::string pole_message(int k, const Interval& range) const;
 
   // The angles (lifter_angles.cpp), in this order.
+  void find_linked();
+  bool is_angle_use(int k) const;  // application k is sin, cos or tan of angles
   void find_angles();
   void choose_unit(size_t j);
   void expand();
@@ -66,6 +68,9 @@ class Lifter {
   void add_application_unknowns();
   void add_tan_unknown(int k, const Polynomial& x);
   void add_sqrt_unknown(int k, const Polynomial& x);
+  void add_reciprocal_unknown(int k, const Polynomial& x);
+  void add_link_unknown(int k, Elementary f, int y);
+  int argument_unknown(int k, Elementary f, const Interval& range);
   void add_typed_constraints();
   void add_angle_constraints();
   std::string add_circle(const Lifting::Angle& a);
@@ -76,6 +81,7 @@ class Lifter {
   const RawSystem& raw_;
   const int n_;
   std::vector<int> angle_of_;  // per declared variable: its angle, or -1
+  std::vector<bool> linked_;   // per application: a sin or cos that is a link
   std::vector<AngleUse> angles_;
   std::vector<Complex> expansions_;  // per application: cos + i sin of its argument (trig only)
   // While building: the lifted polynomial of cos(u_j), sin(u_j) (symbol 2j, 2j + 1), of each

@@ -1,6 +1,7 @@
 #pragma once
 // Sparse polynomials with interval coefficients, and the systems linkbox solves.
 #include "interval/box.hpp"
+#include "model/link.hpp"
 
 #include <map>
 #include <memory>
@@ -86,6 +87,10 @@ struct System {
   // Constraints that select among the roots: pruning may use them (a box where one provably
   // fails holds no root of interest); roots are reported only where all of them hold.
   std::vector<Inequality> inequalities;
+  // Equations y = f(a) that are not polynomials (model/link.hpp); each counts as an equation.
+  // Whatever proves a box empty or a root certified must see them: a contractor may ignore
+  // them only where fewer constraints are still sound (a relaxation).
+  std::vector<Link> links;
   // When the case's own variables were lifted (functions of variables, model/lifting.hpp):
   // how they follow from `variables` and back. Null: `variables` are the case's own.
   std::shared_ptr<const Lifting> lifting;

@@ -67,7 +67,7 @@ const BadCase kBadCases[] = {
     {"no-equations.toml", 4, "no equations"},
     {"equation-parse-error.toml", 9, "equation 2 \"x^2 + * y\": unexpected character '*'"},
     {"constant-equation.toml", 5, "involves no variable"},
-    {"function-of-variable.toml", 5, "functions apply to constants only"},
+    {"function-of-variable.toml", 5, "outside the domain of log on the whole domain"},
     {"duplicate-joint.toml", 6, "duplicate joint 'a' (first declared on line 4)"},
     {"unknown-joint.toml", 8, "unknown joint 'c'"},
     {"zero-axis.toml", 8, "axis of zero length"},
