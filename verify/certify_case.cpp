@@ -223,6 +223,7 @@ VerifyReport conclude(const formulate::Formulation& f, std::vector<ClusterReport
   const int overlaps_unresolved = merge_duplicates(f, report, periodic, options.newton);
   report.inequalities = static_cast<int>(f.natural(0).inequalities.size());
   report.interval_constants = f.natural(0).interval_constants;
+  report.assumed_bounds = f.natural(0).assumed_bounds;
   separate_maps(f, report);
   summarise(report, overlaps_unresolved, result);
   return report;

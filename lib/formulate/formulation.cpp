@@ -33,7 +33,7 @@ const NaturalSystem& Formulation::natural(std::uint64_t chart) const {
 
 NaturalSystem PolynomialFormulation::natural_system(std::uint64_t) const {
   return {system_.equations, system_.names(), system_.domain(), system_.inequalities, {}, nullptr,
-          system_.interval_constants, system_.links};
+          system_.interval_constants, system_.links, system_.assumed_bounds};
 }
 
 std::vector<std::string> PolynomialFormulation::output_names() const {
@@ -67,6 +67,12 @@ std::vector<std::string> PolynomialFormulation::model_notes() const {
     for (auto& c : system_.interval_constants) list += (list.empty() ? "" : ", ") + c;
     notes.push_back("interval constants " + list + ": each use is an interval coefficient, and roots are claimed "
                     "for every value of them");
+  }
+  if (!system_.assumed_bounds.empty()) {
+    std::string list;
+    for (auto& b : system_.assumed_bounds) list += (list.empty() ? "" : ", ") + b;
+    notes.push_back("unbounded in the file, searched within a default bound: " + list +
+                    " (roots beyond it are not reported)");
   }
   if (!system_.inequalities.empty()) {
     std::string list;

@@ -61,6 +61,8 @@ struct NaturalSystem {
   // Non-polynomial equations y = f(a) (model/link.hpp): each counts as an equation (rows
   // after `equations` in `compiled`), and a certified root satisfies them too.
   std::vector<model::Link> links;
+  // Domains the case left unbounded, bounded by default (model::System::assumed_bounds).
+  std::vector<std::string> assumed_bounds;
 };
 
 class Formulation {

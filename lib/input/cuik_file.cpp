@@ -175,11 +175,11 @@ class Parser {
                      "' is not supported: linkbox's variables are real intervals (write ':' for one)");
       t_.expect_symbol(":", "':' and the range of variable '" + name.text + "'");
       t_.expect_symbol("[", "'[' opening the range of '" + name.text + "'");
-      const NodePtr lo = bound("the lower bound of '" + name.text + "'");
+      NodePtr lo = bound("the lower bound of '" + name.text + "'");
       t_.expect_symbol(",", "',' between the bounds of '" + name.text + "'");
-      const NodePtr hi = bound("the upper bound of '" + name.text + "'");
+      NodePtr hi = bound("the upper bound of '" + name.text + "'");
       t_.expect_symbol("]", "']' closing the range of '" + name.text + "'");
-      if (!lo || !hi) peer::fail_unbounded(name.text, lo, hi, "INF", name.line, file_);
+      peer::complete_unbounded(d_, name.text, lo, hi, name.line, file_);
       peer::check_variable_name(name.text, name.line, file_);
       peer::add_variable(d_, name.text, *lo, *hi, name.line, file_);
       symbols_.emplace(name.text, Symbol{false, name.line, nullptr});

@@ -202,20 +202,20 @@ class Parser {
     if (!keyword("in") && !t_.at_symbol(";") && !t_.at_symbol(","))
       t_.fail(name.line, "expected a variable declaration ('x in [lower, upper];') or 'Constraints', found '" +
                              name.text + "' followed by " + peer::describe(t_.peek()));
-    // Minibex's default domain is (-oo, +oo).
-    if (!keyword("in"))
-      t_.fail(name.line, "variable '" + name.text + "' has no domain (Minibex's default is [-oo, +oo]): " +
-                             unbounded_domain_advice(true, true, 0));
-    t_.next();
-    if (t_.at_symbol("("))
-      t_.fail_here("per-component domains ('in (...; ...)') are not supported: give one interval for all of '" +
-                   name.text + "'");
-    t_.expect_symbol("[", "'[' opening the domain of '" + name.text + "'");
-    const NodePtr lo = bound("the lower bound of '" + name.text + "'");
-    t_.expect_symbol(",", "',' between the bounds of '" + name.text + "'");
-    const NodePtr hi = bound("the upper bound of '" + name.text + "'");
-    t_.expect_symbol("]", "']' closing the domain of '" + name.text + "'");
-    if (!lo || !hi) peer::fail_unbounded(name.text, lo, hi, "oo", name.line, file_);
+    // Minibex's default domain is (-oo, +oo): null ends, completed below.
+    NodePtr lo, hi;
+    if (keyword("in")) {
+      t_.next();
+      if (t_.at_symbol("("))
+        t_.fail_here("per-component domains ('in (...; ...)') are not supported: give one interval for all of '" +
+                     name.text + "'");
+      t_.expect_symbol("[", "'[' opening the domain of '" + name.text + "'");
+      lo = bound("the lower bound of '" + name.text + "'");
+      t_.expect_symbol(",", "',' between the bounds of '" + name.text + "'");
+      hi = bound("the upper bound of '" + name.text + "'");
+      t_.expect_symbol("]", "']' closing the domain of '" + name.text + "'");
+    }
+    peer::complete_unbounded(d_, name.text, lo, hi, name.line, file_);
 
     Symbol s{false, name.line, size, {}, {}};
     if (size == 0) {

@@ -356,6 +356,7 @@ System lift(const RawSystem& raw) {
     s = detail::Lifter(raw).run();
   }
   s.interval_constants = raw.interval_constants;
+  s.assumed_bounds = raw.assumed_bounds;
   return s;
 }
 

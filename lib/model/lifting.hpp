@@ -77,6 +77,7 @@ struct RawSystem {
   std::vector<Inequality> inequalities;
   std::vector<Application> applications;
   std::vector<std::string> interval_constants;  // as System::interval_constants
+  std::vector<std::string> assumed_bounds;      // as System::assumed_bounds
 };
 
 // What cannot be lifted. `variable` (declared index), `application`, `equation` or

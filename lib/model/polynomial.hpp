@@ -97,6 +97,9 @@ struct System {
   // The genuine interval constants the coefficients use (as written, e.g. "[0.9, 1.1]"): the
   // system is then a family, and its roots are claimed for every value of them.
   std::vector<std::string> interval_constants;
+  // Variables whose domain the case file left unbounded, as bounded by default ("x in [-1e8,
+  // 1e8]", input/unbounded_domain.hpp): every claim is within them.
+  std::vector<std::string> assumed_bounds;
 
   Box domain() const;
   bool is_multi_affine() const;

@@ -1,8 +1,8 @@
 // Functions of variables (model/lifting.hpp): a system written with sin, cos, tan and sqrt
 // (links and divisions: test_links.cpp) must give, in the variables the user declared and one
 // to one, the roots that its closed form or its hand-lifted twin gives; what cannot be lifted
-// soundly is an InputError naming the line; unbounded domains are rejected with a suggested
-// bound.
+// soundly is an InputError naming the line; an unbounded domain gets the default bound, which
+// the headline states.
 #include "formulate/load.hpp"
 #include "tests/solved_case.hpp"
 #include "input/expression.hpp"
@@ -314,15 +314,23 @@ TEST_CASE("functions of variables: what cannot be lifted is an InputError at its
   }
 }
 
-TEST_CASE("unbounded domains are rejected with a suggested bound", "[functions][input]") {
-  int line = -1;
-  std::string m = load_error(polynomial_case(R"~({ name = "x", domain = [-inf, inf] })~", R"~("x - 1")~"), &line);
-  CHECK(m.find("domain of variable 'x' must be finite, found -inf") == 0);
-  CHECK(m.find("e.g. [-1000, 1000]") != std::string::npos);
-  CHECK(line == 3);
-  m = load_error(polynomial_case(R"~({ name = "x", domain = [-5e3, "inf"] })~", R"~("x - 1")~"));
-  CHECK(m.find("found inf") != std::string::npos);
-  CHECK(m.find("e.g. [<its lower bound>, 100000]") != std::string::npos);
+TEST_CASE("an unbounded domain is searched within the default bound, and the headline says so",
+          "[functions][input]") {
+  // x^2 = 4 with x in [-inf, inf]: both roots; with x in [-5e3, "inf"], one; x - 2e8 = 0 has
+  // its root beyond the bound, so none is claimed there, and the headline says within what.
+  Run both = solve_text(polynomial_case(R"~({ name = "x", domain = [-inf, inf] })~", R"~("x^2 - 4")~"));
+  CHECK(both.roots.size() == 2);
+  CHECK(both.v.exact);
+  CHECK(both.v.headline.find("(with x in [-1e8, 1e8], a default bound)") != std::string::npos);
+  Run half = solve_text(polynomial_case(R"~({ name = "x", domain = [0, "inf"] })~", R"~("x^2 - 4")~"));
+  CHECK(half.roots.size() == 1);
+  CHECK(half.v.headline.find("(with x in [0, 1e8], a default bound)") != std::string::npos);
+  Run beyond = solve_text(polynomial_case(R"~({ name = "x", domain = [-inf, inf] })~", R"~("x - 2e8")~"));
+  CHECK(beyond.roots.empty());
+  CHECK(beyond.v.headline.find("exactly 0 roots in the domain (with x in [-1e8, 1e8]") == 0);
+  // A finite domain is unchanged and says nothing of a bound.
+  Run finite = solve_text(polynomial_case(R"~({ name = "x", domain = [-3, 3] })~", R"~("x^2 - 4")~"));
+  CHECK(finite.v.headline.find("default bound") == std::string::npos);
 }
 
 TEST_CASE("parse_with_functions keeps each distinct application once", "[functions][expression]") {
