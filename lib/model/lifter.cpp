@@ -4,6 +4,7 @@
 
 #include "interval/rigorous.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -86,6 +87,8 @@ void Lifter::build() {
   symbol_.assign(2 * angles_.size(), Polynomial());
   image_.assign(n_ + raw_.applications.size(), Polynomial());
   done_.assign(raw_.applications.size(), false);
+  find_cleared();
+  lifting->cleared = cleared_;
   add_declared_unknowns();
   for (auto& use : angles_) lifting->angles.push_back(use.angle);
   add_application_unknowns();
@@ -146,11 +149,15 @@ void Lifter::add_angle_unknowns(int j) {
 }
 
 // Applications in order: sin/cos of angles are their expansions; tan, sqrt, 1/B and links get
-// an unknown each.
+// an unknown each, except a 1/B whose divisor is cleared.
 void Lifter::add_application_unknowns() {
   for (int k = 0; k < static_cast<int>(raw_.applications.size()); ++k) {
     const Application& a = raw_.applications[k];
     if (done_[k]) continue;  // a tan-only angle's unknown (add_angle_unknowns)
+    if (cleared_[k]) {
+      add_cleared_divisor(k);
+      continue;
+    }
     if (is_angle_use(k) && a.function != Function::tan) {
       image_[n_ + k] = substitute(a.function == Function::cos ? expansions_[k].re : expansions_[k].im, symbol_);
       continue;
@@ -196,7 +203,7 @@ void Lifter::add_sqrt_unknown(int k, const Polynomial& x) {
 }
 
 // q with q B = 1 (lifting.hpp says why the roots correspond one to one); its domain is
-// 1/(range of B), bounded only when that range excludes 0.
+// 1/(range of B), bounded: a range that holds 0 or is unbounded is cleared (find_cleared).
 void Lifter::add_reciprocal_unknown(int k, const Polynomial& x) {
   const Application& a = raw_.applications[k];
   Interval range;
@@ -205,11 +212,6 @@ void Lifter::add_reciprocal_unknown(int k, const Polynomial& x) {
   } catch (const std::domain_error& e) {
     fail_application(k, a.text + ": the divisor is not defined on the domain (" + e.what() + ")");
   }
-  if (zero_in(range) || !is_finite(range))
-    fail_application(k, "division by an expression that may be 0 on the domain: the divisor in " + a.text +
-                            " ranges over [" + format(range.lower()) + ", " + format(range.upper()) +
-                            "], and linkbox bounds the quotient by 1/(that range); narrow the domain so that the "
-                            "divisor stays away from 0");
   add_variable(a.text, padded(Interval(1.0) / range), {Lifting::Source::Kind::application, k});
   definitions_.emplace_back(x * substitute(a.argument, image_) - one(), a.text + " * divisor = 1");
   lifting_->notes.push_back(a.text + " -> an unknown q with q * divisor = 1 (the divisor is away from 0 on the domain)");
@@ -257,12 +259,13 @@ int Lifter::argument_unknown(int k, Elementary f, const Interval& range) {
 
 // Equations and inequalities as typed (what defines the new unknowns comes last, in build).
 void Lifter::add_typed_constraints() {
+  const bool clearing = std::find(cleared_.begin(), cleared_.end(), true) != cleared_.end();
+  const std::string once = clearing ? "once sin and cos are expanded and divisors cleared" : "once sin and cos are expanded";
   for (size_t i = 0; i < raw_.equations.size(); ++i) {
-    Polynomial p = substitute(raw_.equations[i], image_);
+    Polynomial p = clear(substitute(raw_.equations[i], image_), false, -1);
     if (p.is_constant())
-      throw LiftError("equation " + std::to_string(i + 1) +
-                          " is constant once sin and cos are expanded (an identity such as sin(t)^2 + cos(t)^2 = 1, "
-                          "or a contradiction)",
+      throw LiftError("equation " + std::to_string(i + 1) + " is constant " + once +
+                          " (an identity such as sin(t)^2 + cos(t)^2 = 1, or a contradiction)",
                       -1, -1, static_cast<int>(i));
     out_.equations.push_back(std::move(p));
     out_.equation_names.push_back(i < raw_.equation_names.size() ? raw_.equation_names[i] : "");
@@ -270,10 +273,9 @@ void Lifter::add_typed_constraints() {
   for (size_t i = 0; i < raw_.inequalities.size(); ++i) {
     const Inequality& c = raw_.inequalities[i];
     Inequality lifted = c;
-    lifted.g = substitute(c.g, image_);
+    lifted.g = clear(substitute(c.g, image_), true, -1);
     if (lifted.g.is_constant())
-      throw LiftError("inequality \"" + c.name + "\" is constant once sin and cos are expanded", -1, -1, -1,
-                      static_cast<int>(i));
+      throw LiftError("inequality \"" + c.name + "\" is constant " + once, -1, -1, -1, static_cast<int>(i));
     out_.inequalities.push_back(std::move(lifted));
   }
 }
@@ -339,7 +341,8 @@ std::string Lifter::angle_name(const Lifting::Angle& a, const char* f) const {
 Interval Lifter::argument_range(int k) const {
   Box values = raw_domain();
   values.resize(n_ + k + 1, Interval(0.0));
-  for (int i = 0; i < k; ++i) values[n_ + i] = enclose(raw_.applications[i], raw_.applications[i].argument.eval(values));
+  for (int i = 0; i < k; ++i)  // a cleared quotient has no enclosure, and k's argument has none of them
+    if (!cleared_[i]) values[n_ + i] = enclose(raw_.applications[i], raw_.applications[i].argument.eval(values));
   return raw_.applications[k].argument.eval(values);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Internal to model::lift (lifting.hpp), which runs a Lifter: lifter_angles.cpp finds the
 // angles, their units, the expansions of sin and cos into their cos and sin, and their
-// charts; lifter.cpp builds the lifted system from them.
+// charts; lifter.cpp builds the lifted system from them; lifter_divisors.cpp clears the
+// divisors that may be 0.
 #include "model/lifting.hpp"
 
 #include <memory>
@@ -69,6 +70,10 @@ class Lifter {
   void add_tan_unknown(int k, const Polynomial& x);
   void add_sqrt_unknown(int k, const Polynomial& x);
   void add_reciprocal_unknown(int k, const Polynomial& x);
+  // The divisors that may be 0 (lifter_divisors.cpp).
+  void find_cleared();
+  void add_cleared_divisor(int k);
+  Polynomial clear(Polynomial p, bool even, int application) const;
   void add_link_unknown(int k, Elementary f, int y);
   int argument_unknown(int k, Elementary f, const Interval& range);
   void add_typed_constraints();
@@ -91,6 +96,10 @@ class Lifter {
   std::vector<Polynomial> image_;
   std::vector<bool> done_;
   std::vector<std::pair<Polynomial, std::string>> definitions_;
+  // Per application: a reciprocal whose divisor is cleared (no unknown), and that divisor
+  // over the lifted unknowns and the earlier cleared quotients.
+  std::vector<bool> cleared_;
+  std::vector<Polynomial> divisors_;
   System out_;
   Lifting* lifting_ = nullptr;
 };

@@ -109,8 +109,8 @@ Box Lifting::to_lifted(const Box& box) const {
   // Every application's value in order (arguments refer to earlier ones only).
   Box values(n + applications.size(), Interval(0.0));
   std::copy(box.begin(), box.begin() + n, values.begin());
-  for (size_t k = 0; k < applications.size(); ++k)
-    values[n + k] = enclose(applications[k], applications[k].argument.eval(values));
+  for (size_t k = 0; k < applications.size(); ++k)  // a cleared quotient: no unknown, no argument has it
+    if (k >= cleared.size() || !cleared[k]) values[n + k] = enclose(applications[k], applications[k].argument.eval(values));
   Box out;
   for (const Source& src : sources) {
     switch (src.kind) {

@@ -29,10 +29,19 @@
 //  - sqrt(A) (and A^(k + 1/2)) of any expression: an unknown r with r^2 = A, r >= 0 (the
 //    domain of r is [0, sqrt(max A)]).
 //  - 1/B (a division by an expression with variables, A/B = A * (1/B)): an unknown q with
-//    q B = 1. Its domain is 1/(range of B), so B's range over the domain must exclude 0. The
+//    q B = 1 when B's range over the domain excludes 0 (q's domain is 1/that range). The
 //    roots correspond one to one: q B = 1 forces B != 0 and q = 1/B, so no root is lost and
 //    none is added (not even where A = B = 0, which q B - A = 0 would admit), and a root
 //    certified in the lifted system is one of the case's.
+//  - 1/B where B's range may hold 0 (or is unbounded, or B divides by such a divisor): B is
+//    cleared. An equation of degree m in q = 1/B is multiplied by B^m, an inequality by B^e
+//    (e = m rounded up to even, so its sign is kept), which leaves polynomials (later
+//    divisors first, as a divisor may hold earlier quotients); and the strict inequality
+//    -B^2 < 0 is added. Where B != 0 the cleared constraints hold exactly where the case's
+//    do, so no root is lost; where B = 0 the case's expressions are undefined and -B^2 < 0
+//    fails, so no such point is counted (a root of the cleared equations where the enclosure
+//    cannot decide the sign of B is unresolved, as on any inequality's boundary). Any other
+//    function of an expression holding such a quotient is refused (its range is unbounded).
 //  - exp, log, sinh, cosh, tanh, asin, acos, atan (and sin, cos as above) of any expression
 //    A, which no polynomial relates to its argument: an unknown y and a link y = f(a)
 //    (model/link.hpp), used only where no polynomial lifting applies, where a is A
@@ -119,6 +128,7 @@ struct Lifting {
   std::vector<Application> applications;  // as parsed
   std::vector<Angle> angles;
   std::vector<Source> sources;            // one per lifted variable
+  std::vector<bool> cleared;              // per application: a cleared divisor's 1/B (no unknown)
   std::vector<std::string> notes;         // what was lifted, one line each
 
   // Rigorous enclosure of the declared variables over a box of lifted ones. Every point of

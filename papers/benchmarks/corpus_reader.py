@@ -40,6 +40,7 @@ REASONS = [
     ("unbounded domain", r"has no domain|must be finite"),
     ("division by variables", r"division by an expression with variables"),
     ("divisor may be 0 on the domain", r"division by an expression that may be 0"),
+    ("function of a quotient whose divisor may be 0", r"has a divisor that may be 0"),
     ("function outside its domain", r"outside the domain of"),
     ("function value unbounded on the domain", r"value is not bounded"),
 ]
