@@ -113,8 +113,8 @@ void complete_unbounded(Draft& d, const std::string& name, NodePtr& lower, NodeP
                         const std::string& file) {
   if (lower && upper) return;
   const std::string lo = lower ? write(*lower, file, line).text : "", hi = upper ? write(*upper, file, line).text : "";
-  if (!lower) lower = number("-1e8", line);
-  if (!upper) upper = number("1e8", line);
+  if (!lower) lower = number(std::string("-") + kDefaultBoundText, line);
+  if (!upper) upper = number(kDefaultBoundText, line);
   d.raw.assumed_bounds.push_back(assumed_bound(name, lo, hi));
 }
 

@@ -3,7 +3,8 @@
 namespace linkbox::input {
 
 std::string assumed_bound(const std::string& name, const std::string& lower, const std::string& upper) {
-  return name + " in [" + (lower.empty() ? "-1e8" : lower) + ", " + (upper.empty() ? "1e8" : upper) + "]";
+  const std::string bound = kDefaultBoundText;
+  return name + " in [" + (lower.empty() ? "-" + bound : lower) + ", " + (upper.empty() ? bound : upper) + "]";
 }
 
 }  // namespace linkbox::input

@@ -10,6 +10,7 @@
 namespace linkbox::input {
 
 inline constexpr double kDefaultBound = 1e8;
+inline constexpr const char* kDefaultBoundText = "1e8";  // as written in messages and models
 
 // "x in [-1e8, 1e8]" for the variable `name` whose ends `lower`, `upper` (as written; empty
 // when infinite) were completed by the default bound.
