@@ -1,5 +1,7 @@
 #include "verify/certify_case.hpp"
 
+#include "verify/check_proofs.hpp"
+
 #include "verify/cluster.hpp"
 #include "verify/symmetric_map.hpp"
 #include "verify/curve.hpp"
@@ -69,7 +71,7 @@ int merge_duplicates(const formulate::Formulation& f, VerifyReport& report,
         joint = hull(joint, f.output_to_natural(first.chart, unwrap(other.root, first.root, f.outputs_are_angles())));
       } catch (const std::exception&) {
       }
-      newton::Certificate both = newton::certify_root(sys.equations, joint, sys.domain, options);
+      newton::Certificate both = certify_natural(sys, joint, options);
       if (both.status == newton::Status::certified && both.unique_in_hull) {
         other.duplicate_of = static_cast<int>(root_of[g[0]]);
         other.reason = "same root as another cluster (found by two sub-problems)";
@@ -234,6 +236,7 @@ VerifyReport conclude(const formulate::Formulation& f, std::vector<ClusterReport
   const int overlaps_unresolved = merge_duplicates(f, report, periodic, options.newton);
   report.inequalities = static_cast<int>(f.natural(0).inequalities.size());
   report.interval_constants = f.natural(0).interval_constants;
+  report.assumed_bounds = f.natural(0).assumed_bounds;
   separate_maps(f, report);
   summarise(report, overlaps_unresolved, result);
   return report;

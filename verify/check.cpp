@@ -5,6 +5,7 @@
 #include "verify/check_map.hpp"
 #include "verify/check_proofs.hpp"
 #include "verify/cluster.hpp"
+#include "verify/isolated.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -170,6 +171,8 @@ class Checker {
       check_infeasible(k, sys);
     } else if (status == "unverified" && c.contains("subsystem") && c.at("certificate").at("status") == "certified") {
       check_subsystem(k, sys);
+    } else if (status == "curve" && !sys.links.empty()) {
+      out_.failures.push_back(where + ": called a curve in a system with links (curves are certified without them)");
     } else if (status == "curve") {
       if (c.contains("map")) check_curve_map(k);
       std::set<size_t> crossed;
@@ -202,7 +205,7 @@ class Checker {
     ++out_.checked;
     const json& cj = k.c.at("certificate");
     const newton::Certificate cert = certificate_from(cj);
-    const std::optional<Box> image = proved_image(sys.equations, cert);
+    const std::optional<Box> image = proved_image(sys, cert);
     if (!image) {
       out_.failures.push_back(k.where + ": the Newton test does not hold on the stored box and preconditioner");
       return;
@@ -241,7 +244,7 @@ class Checker {
     if (holds && c.contains("excluding_equation")) {
       // Proved by evaluation: that equation's range over the box misses 0.
       const int e = c.at("excluding_equation");
-      holds = e >= 0 && e < static_cast<int>(sys.equations.size()) && !zero_in(sys.equations[e].eval(cert.box));
+      holds = excludes(sys, e, cert.box);
     } else if (holds) {
       holds = newton::recheck_exclusion(eqs, cert.box, cert.preconditioner, cert.method);
     }
@@ -263,7 +266,8 @@ class Checker {
                              [&](auto& q) { return model::side_of(q, cert.box) == model::Side::outside; });
     const auto start = carried([&] { return f_.output_to_natural(k.chart, k.hull); });
     if (c.at("certificate").at("status") == "certified")
-      holds = holds && c.at("certificate").value("unique_in_hull", false) && newton::recheck(sys.equations, cert) &&
+      holds = holds && c.at("certificate").value("unique_in_hull", false) &&
+              (sys.links.empty() ? newton::recheck(sys.equations, cert) : proved_image(sys, cert).has_value()) &&
               start && unique_over(sys, *start, cert);
     else
       holds = holds && start && encloses(cert.box, *start);
@@ -281,8 +285,8 @@ class Checker {
       out_.failures.push_back(k.where + ": the certificate of its square subsystem does not hold");
       return;
     }
-    for (size_t e = 0; e < sys.equations.size(); ++e)
-      if (!zero_in(sys.equations[e].eval(cert.box))) {
+    for (size_t e = 0; e < sys.equations.size() + sys.links.size(); ++e)
+      if (excludes(sys, static_cast<int>(e), cert.box)) {
         out_.failures.push_back(k.where + ": natural equation " + std::to_string(e) + " misses 0 on the subsystem's box");
         break;
       }
@@ -315,6 +319,10 @@ class Checker {
     const std::uint64_t crossing_chart = x.value("chart", k.chart);
     if (!chart_exists(crossing_chart)) {
       out_.failures.push_back(k.where + ": a curve crossing names a chart the case does not have");
+      return false;
+    }
+    if (!f_.natural(crossing_chart).links.empty()) {
+      out_.failures.push_back(k.where + ": a curve crossing in a system with links (curves are certified without them)");
       return false;
     }
     const auto& full = f_.natural(crossing_chart).equations;
@@ -415,8 +423,7 @@ class Checker {
           const auto& sys = f_.natural(chart);
           const auto mapped = carried([&] { return f_.output_to_natural(chart, unwrapped(other, root, angles_)); });
           if (mapped && mapped->size() == cert.box.size()) {
-            const newton::Certificate both =
-                newton::certify_root(sys.equations, linkbox::hull(cert.box, *mapped), sys.domain);
+            const newton::Certificate both = certify_natural(sys, linkbox::hull(cert.box, *mapped));
             proved = both.status == newton::Status::certified && both.unique_in_hull;
           }
         }

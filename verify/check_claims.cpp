@@ -128,6 +128,7 @@ void check_claims(const json& j, const formulate::Formulation& f, std::vector<Cl
   r.clusters = std::move(clusters);
   r.inequalities = static_cast<int>(f.natural(0).inequalities.size());
   r.interval_constants = f.natural(0).interval_constants;
+  r.assumed_bounds = f.natural(0).assumed_bounds;
   solve::CaseResult search;
   search.complete = j.at("complete").get<bool>();
   search.stop_reason = j.value("stop_reason", "");

@@ -10,7 +10,11 @@ namespace linkbox::verify {
 
 bool encloses(const Box& outer, const Box& inner) { return outer.size() == inner.size() && contains(outer, inner); }
 
-std::optional<Box> proved_image(const std::vector<model::Polynomial>& f, const newton::Certificate& c) {
+namespace {
+
+// `F` is a polynomial system or a compiled one: SquareSystem takes either.
+template <class F>
+std::optional<Box> image_under(const F& f, const newton::Certificate& c) {
   const int n = static_cast<int>(c.box.size()), p = c.fixed_variable;
   if (n == 0 || p >= n || (p >= 0 && !(c.box[p].lower() == c.box[p].upper()))) return std::nullopt;
   std::vector<int> unknowns;
@@ -24,6 +28,29 @@ std::optional<Box> proved_image(const std::vector<model::Polynomial>& f, const n
   } catch (const std::invalid_argument&) {
     return std::nullopt;
   }
+}
+
+}  // namespace
+
+std::optional<Box> proved_image(const std::vector<model::Polynomial>& f, const newton::Certificate& c) {
+  return image_under(f, c);
+}
+
+std::optional<Box> proved_image(const formulate::NaturalSystem& sys, const newton::Certificate& c) {
+  if (sys.links.empty()) return image_under(sys.equations, c);
+  if (!sys.compiled || c.fixed_variable >= 0) return std::nullopt;
+  return image_under(sys.compiled, c);
+}
+
+newton::Certificate certify_natural(const formulate::NaturalSystem& sys, const Box& hull,
+                                    const newton::NewtonOptions& options) {
+  if (sys.links.empty()) return newton::certify_root(sys.equations, hull, sys.domain, options);
+  if (sys.compiled) return newton::certify_root(newton::SquareSystem::all_unknown(sys.compiled), hull, sys.domain, options);
+  newton::Certificate c;
+  c.method = options.method;
+  c.box = hull;
+  c.reason = newton::Reason::not_square;
+  return c;
 }
 
 bool unique_over(const formulate::NaturalSystem& sys, const Box& start, const newton::Certificate& c) {

@@ -17,6 +17,13 @@ bool encloses(const Box& outer, const Box& inner);
 // degenerate side). Empty when the test does not hold: the image is not strictly inside the
 // box, or the sizes do not fit the equations.
 std::optional<Box> proved_image(const std::vector<model::Polynomial>& f, const newton::Certificate& c);
+// The same in a natural system, links included (a system with links: a root certificate only,
+// in the compiled square system; a curve crossing never holds there).
+std::optional<Box> proved_image(const formulate::NaturalSystem& sys, const newton::Certificate& c);
+
+// newton::certify_root in a natural system, links included (not square: not_square).
+newton::Certificate certify_natural(const formulate::NaturalSystem& sys, const Box& hull,
+                                    const newton::NewtonOptions& options = {});
 
 // unique_in_hull re-proved as newton::certify_root proves it: no root in hull(start, box)
 // other than the certificate's. Either the box covers the start, or the Newton test with the

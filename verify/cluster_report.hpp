@@ -74,6 +74,8 @@ struct VerifyReport {
   int inequalities = 0;  // of the natural system: the count is of roots where they all hold
   // The natural system's genuine interval constants: every claim holds for every value of them.
   std::vector<std::string> interval_constants;
+  // Domains the case left unbounded, bounded by default: every claim is within them.
+  std::vector<std::string> assumed_bounds;
   bool exact = false;  // "exactly N roots in the domain" holds
   std::string headline;
   double seconds = 0;

@@ -162,6 +162,7 @@ bool classify_curve(const formulate::Formulation& f, const std::vector<Box>& mem
                     bool chart_holds_cluster, ClusterReport& c, const newton::NewtonOptions& options) {
   if (c.status != ClusterStatus::unverified) return false;
   const auto& sys = f.natural(c.chart);
+  if (!sys.links.empty()) return false;  // curves are certified in polynomial equations only
   const size_t n = sys.unknowns.size();
   // Curve: many boxes spanning far more than any one of them, with a rank-deficient
   // Jacobian near the boxes (or fewer equations than unknowns).

@@ -57,9 +57,12 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
   report.exact = result.complete && result.rigorous && report.unverified == 0 && (report.curves == 0 || maps_proved) &&
                  all_unique && overlaps_unresolved == 0;
   const int n = report.certified_roots;
+  std::string bounds;
+  for (auto& b : report.assumed_bounds) bounds += (bounds.empty() ? "" : ", ") + b;
+  const std::string domain = bounds.empty() ? "in the domain" : "in the domain (with " + bounds + ", a default bound)";
   const std::string where =
-      report.inequalities == 0 ? "in the domain"
-                               : std::string("in the domain where the ") +
+      report.inequalities == 0 ? domain
+                               : domain + " where the " +
                                      (report.inequalities == 1 ? "inequality holds" : "inequalities hold");
   const std::string excluded =
       report.infeasible ? ", " + std::to_string(report.infeasible) + " proved to violate an inequality" : "";

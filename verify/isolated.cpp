@@ -28,6 +28,16 @@ std::vector<std::vector<int>> square_subsystems(const std::vector<model::Polynom
   return out;
 }
 
+}  // namespace
+
+bool excludes(const formulate::NaturalSystem& sys, int e, const Box& box) {
+  const int m = static_cast<int>(sys.equations.size());
+  if (e < 0 || e >= m + static_cast<int>(sys.links.size())) return false;
+  return e < m ? !zero_in(sys.equations[e].eval(box)) : !model::may_hold(sys.links[e - m], box);
+}
+
+namespace {
+
 std::string not_square(size_t equations, size_t unknowns) {
   return "natural system not square: " + std::to_string(equations) + " equations in " + std::to_string(unknowns) +
          " unknowns";
@@ -44,19 +54,20 @@ std::string count(size_t n, const std::string& one, const std::string& many) {
 // equations containing 0 there is said so: a consistent candidate, never a certified root
 // (the other equations are only evaluated, and a root of the subsystem need not be one of
 // them all).
+// Links count as equations (numbered after the polynomials); their subsystems are not tried.
 void examine_not_square(const formulate::NaturalSystem& sys, const Box& start, ClusterReport& c,
                         const newton::NewtonOptions& options) {
-  const size_t e = sys.equations.size(), u = sys.unknowns.size();
+  const size_t e = sys.equations.size() + sys.links.size(), u = sys.unknowns.size();
   c.reason = not_square(e, u) + (e < u ? " (fewer equations: mobile)" : "");
   for (size_t i = 0; i < e; ++i)
-    if (!zero_in(sys.equations[i].eval(start))) {
+    if (excludes(sys, static_cast<int>(i), start)) {
       c.status = ClusterStatus::empty;
       c.excluding_equation = static_cast<int>(i);
       c.certificate.box = start;
       c.reason = "proved to hold no root: natural equation " + std::to_string(i) + " misses 0 over the cluster";
       return;
     }
-  if (e < u) return;
+  if (e < u || !sys.links.empty()) return;
   // The least-squares point nearest the centre: where subsystems are chosen, and a start for
   // Newton when the centre leads elsewhere (a subsystem has roots the others do not share).
   const Eigen::VectorXd p = newton::FloatSystem(sys.equations, u).solve_from(newton::centre(start));
@@ -107,7 +118,7 @@ void certify_isolated(const formulate::Formulation& f, const formulate::NaturalS
     c.reason = "no natural system to certify in" + (sys.missing.empty() ? "" : ": " + sys.missing);
     return;
   }
-  if (sys.equations.size() != n) {
+  if (sys.equations.size() + sys.links.size() != n) {
     examine_not_square(sys, start, c, options);
     return;
   }

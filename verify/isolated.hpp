@@ -13,6 +13,10 @@ void certify_isolated(const formulate::Formulation& f, const formulate::NaturalS
                       const std::vector<Box>& members, const std::vector<bool>& periodic, ClusterReport& c,
                       const newton::NewtonOptions& options);
 
+// Whether natural equation `e` provably holds nowhere in `box`: its range misses 0 (a
+// polynomial, e < equations.size()) or link e - equations.size() cannot hold there.
+bool excludes(const formulate::NaturalSystem& sys, int e, const Box& box);
+
 // After certification, against the natural system's inequalities (`start`: the cluster's
 // hull in the natural unknowns). A certified root stays certified only when every
 // inequality provably holds on its certified box; one violated there makes the cluster

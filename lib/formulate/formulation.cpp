@@ -4,9 +4,18 @@
 
 namespace linkbox::formulate {
 
+// With links, the unknowns that stand for functions of the declared variables (a link's y
+// and argument, a quotient, a square root) are not split: propagation narrows them from the
+// declared ones, and splitting them too multiplies the boxes (a link's y often spans many
+// orders of magnitude). Without links every unknown is split.
 SubProblem PolynomialFormulation::subproblem(size_t) const {
   SubProblem s{"all", system_, {}, nullptr, nullptr, false};
-  for (size_t i = 0; i < system_.variables.size(); ++i) s.split_dims.push_back(static_cast<int>(i));
+  using Kind = model::Lifting::Source::Kind;
+  for (size_t i = 0; i < system_.variables.size(); ++i) {
+    const bool dependent = !system_.links.empty() && (system_.lifting->sources[i].kind == Kind::application ||
+                                                      system_.lifting->sources[i].kind == Kind::argument);
+    if (!dependent) s.split_dims.push_back(static_cast<int>(i));
+  }
   return s;
 }
 
@@ -15,8 +24,8 @@ const NaturalSystem& Formulation::natural(std::uint64_t chart) const {
   auto& slot = natural_[chart];
   if (!slot) {
     auto sys = std::make_unique<NaturalSystem>(natural_system(chart));
-    if (!sys->unknowns.empty() && sys->equations.size() == sys->unknowns.size())
-      sys->compiled = std::make_shared<const model::CompiledSystem>(sys->equations, sys->unknowns.size());
+    if (!sys->unknowns.empty() && sys->equations.size() + sys->links.size() == sys->unknowns.size())
+      sys->compiled = std::make_shared<const model::CompiledSystem>(sys->equations, sys->links, sys->unknowns.size());
     slot = std::move(sys);
   }
   return *slot;
@@ -24,7 +33,7 @@ const NaturalSystem& Formulation::natural(std::uint64_t chart) const {
 
 NaturalSystem PolynomialFormulation::natural_system(std::uint64_t) const {
   return {system_.equations, system_.names(), system_.domain(), system_.inequalities, {}, nullptr,
-          system_.interval_constants};
+          system_.interval_constants, system_.links, system_.assumed_bounds};
 }
 
 std::vector<std::string> PolynomialFormulation::output_names() const {
@@ -46,8 +55,11 @@ std::vector<std::string> PolynomialFormulation::model_notes() const {
   std::vector<std::string> notes;
   if (system_.lifting) {
     const size_t declared = system_.lifting->declared.size(), unknowns = system_.variables.size();
+    const size_t links = system_.links.size(), equations = system_.equations.size() + links;
     notes.push_back("lifted: " + std::to_string(declared) + " declared variables -> " + std::to_string(unknowns) +
-                    " unknowns, " + std::to_string(system_.equations.size()) + " equations");
+                    " unknowns, " + std::to_string(equations) + " equations" +
+                    (links ? " (" + std::to_string(links) + (links == 1 ? " link" : " links") + " y = f(a) among them)"
+                           : std::string()));
     for (auto& n : system_.lifting->notes) notes.push_back("  " + n);
   }
   if (!system_.interval_constants.empty()) {
@@ -55,6 +67,12 @@ std::vector<std::string> PolynomialFormulation::model_notes() const {
     for (auto& c : system_.interval_constants) list += (list.empty() ? "" : ", ") + c;
     notes.push_back("interval constants " + list + ": each use is an interval coefficient, and roots are claimed "
                     "for every value of them");
+  }
+  if (!system_.assumed_bounds.empty()) {
+    std::string list;
+    for (auto& b : system_.assumed_bounds) list += (list.empty() ? "" : ", ") + b;
+    notes.push_back("unbounded in the file, searched within a default bound: " + list +
+                    " (roots beyond it are not reported)");
   }
   if (!system_.inequalities.empty()) {
     std::string list;

@@ -52,11 +52,17 @@ struct NaturalSystem {
   // classifies it, see verify/isolated.hpp); Newton ignores them.
   std::vector<model::Inequality> inequalities;
   std::string missing;  // no equations: why the formulation has none (empty: not given)
-  // When square: the equations compiled for interval Newton, over `unknowns`.
+  // When square (equations and links as many as the unknowns): both compiled for interval
+  // Newton, over `unknowns`.
   std::shared_ptr<const model::CompiledSystem> compiled;
   // The genuine interval constants of the coefficients (model::System): a certified root is
   // then one for every value of them.
   std::vector<std::string> interval_constants;
+  // Non-polynomial equations y = f(a) (model/link.hpp): each counts as an equation (rows
+  // after `equations` in `compiled`), and a certified root satisfies them too.
+  std::vector<model::Link> links;
+  // Domains the case left unbounded, bounded by default (model::System::assumed_bounds).
+  std::vector<std::string> assumed_bounds;
 };
 
 class Formulation {

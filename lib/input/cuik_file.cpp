@@ -16,7 +16,7 @@
 // root, so roots are counted in all the variables. Equations (and inequalities, '<=' or '>=')
 // are sums of signed monomials; a monomial is a product of numbers, constants, PI and
 // variables, each with an optional integer power (x^2), and of SIN, COS, TAN, EXP of a
-// constant or of a variable (SIN, COS and TAN of variables are lifted as in TOML cases,
+// constant or of a variable (functions of variables are lifted as in TOML cases,
 // model/lifting.hpp). Constants and range bounds are expressions with + - * / ^, parentheses,
 // PI, SIN COS TAN COT ASIN ACOS ATAN EXP SQRT; there a unary minus binds tighter than '^'
 // (-2^2 is 4), as in CuikSuite. Keywords and section names are case-insensitive. Comments:
@@ -24,8 +24,8 @@
 // accepted and ignored (an order of search does not change the roots).
 //
 // Not supported, each an error naming it: circular ranges ('~'), INF (in a range, refused with
-// a suggested bound), EXP of a variable, matrix equations (TX(...)*RZ(...) = ID), velocity and non-dynamic sections, [SEARCH] MIN, ATAN2,
-// ABS, PWP, PARAMETER, DIFF, comparisons and '?:' in constants.
+// a suggested bound), matrix equations (TX(...)*RZ(...) = ID), velocity and non-dynamic
+// sections, [SEARCH] MIN, ATAN2, ABS, PWP, PARAMETER, DIFF, comparisons and '?:' in constants.
 #include "input/cuik_file.hpp"
 
 #include <cctype>
@@ -175,11 +175,11 @@ class Parser {
                      "' is not supported: linkbox's variables are real intervals (write ':' for one)");
       t_.expect_symbol(":", "':' and the range of variable '" + name.text + "'");
       t_.expect_symbol("[", "'[' opening the range of '" + name.text + "'");
-      const NodePtr lo = bound("the lower bound of '" + name.text + "'");
+      NodePtr lo = bound("the lower bound of '" + name.text + "'");
       t_.expect_symbol(",", "',' between the bounds of '" + name.text + "'");
-      const NodePtr hi = bound("the upper bound of '" + name.text + "'");
+      NodePtr hi = bound("the upper bound of '" + name.text + "'");
       t_.expect_symbol("]", "']' closing the range of '" + name.text + "'");
-      if (!lo || !hi) peer::fail_unbounded(name.text, lo, hi, "INF", name.line, file_);
+      peer::complete_unbounded(d_, name.text, lo, hi, name.line, file_);
       peer::check_variable_name(name.text, name.line, file_);
       peer::add_variable(d_, name.text, *lo, *hi, name.line, file_);
       symbols_.emplace(name.text, Symbol{false, name.line, nullptr});

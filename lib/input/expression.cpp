@@ -35,10 +35,11 @@ struct Function {
 };
 constexpr Function kFunctions[] = {
     {"sin", rigorous::sin, true, Lifted::sin},      {"cos", rigorous::cos, true, Lifted::cos},
-    {"tan", rigorous::tan, true, Lifted::tan},      {"asin", rigorous::asin, false, Lifted::sin},
-    {"acos", rigorous::acos, false, Lifted::sin},   {"atan", rigorous::atan, false, Lifted::sin},
-    {"sqrt", rigorous::sqrt, true, Lifted::sqrt},   {"exp", rigorous::exp, false, Lifted::sin},
-    {"log", rigorous::log, false, Lifted::sin},
+    {"tan", rigorous::tan, true, Lifted::tan},      {"asin", rigorous::asin, true, Lifted::asin},
+    {"acos", rigorous::acos, true, Lifted::acos},   {"atan", rigorous::atan, true, Lifted::atan},
+    {"sqrt", rigorous::sqrt, true, Lifted::sqrt},   {"exp", rigorous::exp, true, Lifted::exp},
+    {"log", rigorous::log, true, Lifted::log},      {"sinh", rigorous::sinh, true, Lifted::sinh},
+    {"cosh", rigorous::cosh, true, Lifted::cosh},   {"tanh", rigorous::tanh, true, Lifted::tanh},
 };
 
 const Function* find_function(std::string_view name) {
@@ -115,6 +116,8 @@ class Parser {
       Value rhs = unary();
       if (op == '*')
         v = multiply(v, rhs, at);
+      else if (rhs.has_variable && applications_ && !rhs.poly.is_constant())
+        v = multiply(v, reciprocal(rhs, rhs_at), at);
       else
         v = divide(v, rhs, rhs_at);
       check_finite(v, at);
@@ -265,9 +268,7 @@ class Parser {
     expect_closing(open_at);
     if (arg.has_variable && applications_) {
       if (!f.liftable)
-        fail(std::string(f.name) + " of an expression with variables: functions apply to constants only, except "
-                                   "sin, cos, tan and sqrt (which are lifted to new unknowns)",
-             name_at);
+        fail(std::string(f.name) + " of an expression with variables: functions apply to constants only", name_at);
       if (!arg.poly.is_constant())
         return application(f.lifted, arg.poly, std::string(text_.substr(name_at, pos_ - name_at)));
       // Folded to a constant (sin(x - x)): evaluated as one below.
@@ -294,6 +295,14 @@ class Parser {
     while (k < apps.size() && !(apps[k].function == f && model::same(apps[k].argument, argument))) ++k;
     if (k == apps.size()) apps.push_back({f, argument, std::move(text)});
     return Value{Polynomial::variable(static_cast<int>(variables_.size() + k)), true};
+  }
+
+  // 1/B for a divisor with variables, as the application its text names.
+  Value reciprocal(const Value& divisor, size_t divisor_at) {
+    const std::string text(trim(text_.substr(divisor_at, pos_ - divisor_at)));
+    const bool bare = std::all_of(text.begin(), text.end(), [](char c) { return is_identifier_char(c); }) ||
+                      (text.front() == '(' && text.back() == ')');
+    return application(Lifted::reciprocal, divisor.poly, bare ? "1/" + text : "1/(" + text + ")");
   }
 
   static bool is_half_integer(const Value& e) {

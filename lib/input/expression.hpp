@@ -12,13 +12,14 @@
 //   primary := number | 'pi' | variable | function '(' expr ')' | '(' expr ')'
 //            | '[' expr ',' expr ']'       an interval constant, where `intervals` is given
 //   number  := digits ['.' digits] | '.' digits, then optionally [eE][+-]digits
-//   function: sin cos tan asin acos atan sqrt exp log, of constant arguments only.
+//   function: sin cos tan asin acos atan sqrt exp log sinh cosh tanh, of constant arguments only.
 // Exponents are exact non-negative integers (at most kMaxExponent); divisors are constant
 // expressions whose interval excludes 0.
 //
-// parse_with_functions also admits sin, cos, tan and sqrt of expressions with variables,
-// and exponents k + 1/2 (x^(1/2) is sqrt(x)); they are kept as model::Application for
-// model::lift, which turns them into polynomial equations in new unknowns.
+// parse_with_functions also admits every function of expressions with variables, exponents
+// k + 1/2 (x^(1/2) is sqrt(x)) and divisors with variables (A/B is A * (1/B)); they are kept
+// as model::Application for model::lift, which turns them into new unknowns with polynomial
+// equations or links (model/lifting.hpp).
 //
 // An interval constant [a, b] (constant ends, a <= b) is the interval from the lower end of
 // a's enclosure to the upper end of b's: each use is one interval coefficient, standing for
@@ -49,8 +50,8 @@ struct ParseError : std::runtime_error {
 // A declared variable named like a constant (`pi`) shadows it.
 model::Polynomial parse_polynomial(std::string_view text, const std::vector<std::string>& variables);
 
-// Like parse_polynomial, but sin, cos, tan and sqrt of expressions with variables (and
-// exponents k + 1/2) become applications: each distinct one is appended to `applications`
+// Like parse_polynomial, but functions of expressions with variables (and exponents k + 1/2,
+// and divisors with variables) become applications: each distinct one is appended to `applications`
 // once (an equal one already there is reused) and stands for variable
 // variables.size() + its index. With `intervals`, interval constants are allowed and listed
 // there (null: they are an error).

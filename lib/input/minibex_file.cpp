@@ -13,8 +13,8 @@
 //   end
 //
 // Expressions: numbers, pi, constants, intervals [a, b], + - * / ^ and sqr; sqrt exp ln sin
-// cos tan asin acos atan as far as linkbox's equations take them: of constants, and sin, cos,
-// tan and sqrt of variables too, lifted as in TOML cases (model/lifting.hpp). An interval
+// cos tan asin acos atan sinh cosh tanh, of constants and of variables, lifted as in TOML
+// cases (model/lifting.hpp), as are divisions by expressions with variables. An interval
 // constant whose ends are the same number is that number; a genuine one is an interval
 // coefficient wherever it is used, and is refused in domains, sizes and indices. Precedence
 // and associativity are Minibex's: '^' associates to the left, and a unary minus takes the
@@ -47,13 +47,14 @@ constexpr long kMaxVectorSize = 100000;
 // Minibex's function names that linkbox's grammar has, under linkbox's names.
 const std::map<std::string, std::string, std::less<>> kFunctions = {
     {"sqrt", "sqrt"}, {"exp", "exp"},   {"ln", "log"},    {"sin", "sin"},   {"cos", "cos"},
-    {"tan", "tan"},   {"asin", "asin"}, {"acos", "acos"}, {"atan", "atan"},
+    {"tan", "tan"},   {"asin", "asin"}, {"acos", "acos"}, {"atan", "atan"}, {"sinh", "sinh"},
+    {"cosh", "cosh"}, {"tanh", "tanh"},
 };
 const std::set<std::string, std::less<>> kUnsupportedFunctions = {
-    "max",   "min",   "atan2", "sign",    "abs", "cosh", "sinh", "tanh", "acosh", "asinh",
-    "atanh", "floor", "ceil",  "integer", "chi", "inf",  "mid",  "sup",  "sum",   "diff",
+    "max",  "min",  "atan2", "sign",    "abs", "acosh", "asinh", "atanh", "floor",
+    "ceil", "integer", "chi", "inf",  "mid",  "sup",   "sum",   "diff",
 };
-const char* const kFunctionList = "sqr, sqrt, exp, ln, sin, cos, tan, asin, acos, atan";
+const char* const kFunctionList = "sqr, sqrt, exp, ln, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh";
 
 // Block keywords are case-insensitive in Minibex ("Variables", "variables", "VARIABLES").
 const std::set<std::string, std::less<>> kKeywords = {
@@ -201,20 +202,20 @@ class Parser {
     if (!keyword("in") && !t_.at_symbol(";") && !t_.at_symbol(","))
       t_.fail(name.line, "expected a variable declaration ('x in [lower, upper];') or 'Constraints', found '" +
                              name.text + "' followed by " + peer::describe(t_.peek()));
-    // Minibex's default domain is (-oo, +oo).
-    if (!keyword("in"))
-      t_.fail(name.line, "variable '" + name.text + "' has no domain (Minibex's default is [-oo, +oo]): " +
-                             unbounded_domain_advice(true, true, 0));
-    t_.next();
-    if (t_.at_symbol("("))
-      t_.fail_here("per-component domains ('in (...; ...)') are not supported: give one interval for all of '" +
-                   name.text + "'");
-    t_.expect_symbol("[", "'[' opening the domain of '" + name.text + "'");
-    const NodePtr lo = bound("the lower bound of '" + name.text + "'");
-    t_.expect_symbol(",", "',' between the bounds of '" + name.text + "'");
-    const NodePtr hi = bound("the upper bound of '" + name.text + "'");
-    t_.expect_symbol("]", "']' closing the domain of '" + name.text + "'");
-    if (!lo || !hi) peer::fail_unbounded(name.text, lo, hi, "oo", name.line, file_);
+    // Minibex's default domain is (-oo, +oo): null ends, completed below.
+    NodePtr lo, hi;
+    if (keyword("in")) {
+      t_.next();
+      if (t_.at_symbol("("))
+        t_.fail_here("per-component domains ('in (...; ...)') are not supported: give one interval for all of '" +
+                     name.text + "'");
+      t_.expect_symbol("[", "'[' opening the domain of '" + name.text + "'");
+      lo = bound("the lower bound of '" + name.text + "'");
+      t_.expect_symbol(",", "',' between the bounds of '" + name.text + "'");
+      hi = bound("the upper bound of '" + name.text + "'");
+      t_.expect_symbol("]", "']' closing the domain of '" + name.text + "'");
+    }
+    peer::complete_unbounded(d_, name.text, lo, hi, name.line, file_);
 
     Symbol s{false, name.line, size, {}, {}};
     if (size == 0) {

@@ -109,20 +109,13 @@ void check_variable_name(const std::string& name, int line, const std::string& f
                          "' is reserved in linkbox's equations (a constant or function name there); rename it");
 }
 
-void fail_unbounded(const std::string& name, const NodePtr& lower, const NodePtr& upper, const std::string& infinity,
-                    int line, const std::string& file) {
-  double magnitude = 0;
-  for (const NodePtr& end : {lower, upper}) {
-    if (!end) continue;
-    const Interval x = constant_value(*end, "a bound of variable '" + name + "'", file);
-    magnitude = std::max({magnitude, std::fabs(x.lower()), std::fabs(x.upper())});
-  }
-  auto text = [&](const NodePtr& end, const std::string& sign) {
-    return end ? write(*end, file, line).text : sign + infinity;
-  };
-  throw InputError(file, line,
-                   "domain of variable '" + name + "' must be finite, found [" + text(lower, "-") + ", " +
-                       text(upper, "+") + "]: " + unbounded_domain_advice(!lower, !upper, magnitude));
+void complete_unbounded(Draft& d, const std::string& name, NodePtr& lower, NodePtr& upper, int line,
+                        const std::string& file) {
+  if (lower && upper) return;
+  const std::string lo = lower ? write(*lower, file, line).text : "", hi = upper ? write(*upper, file, line).text : "";
+  if (!lower) lower = number(std::string("-") + kDefaultBoundText, line);
+  if (!upper) upper = number(kDefaultBoundText, line);
+  d.raw.assumed_bounds.push_back(assumed_bound(name, lo, hi));
 }
 
 }  // namespace linkbox::input::peer

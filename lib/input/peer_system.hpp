@@ -59,7 +59,9 @@ void check_variable_name(const std::string& name, int line, const std::string& f
 
 // Fails at `line`: variable `name`'s domain has an infinite end (a null `lower` or `upper`),
 // written `infinity` in the peer's format ("oo", "INF").
-[[noreturn]] void fail_unbounded(const std::string& name, const NodePtr& lower, const NodePtr& upper,
-                                 const std::string& infinity, int line, const std::string& file);
+// An infinite end (null) becomes the default bound, recorded in d.raw.assumed_bounds
+// (input/unbounded_domain.hpp).
+void complete_unbounded(Draft& d, const std::string& name, NodePtr& lower, NodePtr& upper, int line,
+                        const std::string& file);
 
 }  // namespace linkbox::input::peer

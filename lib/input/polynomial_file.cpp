@@ -24,7 +24,9 @@
 #include "input/unbounded_domain.hpp"
 #include "model/lifting.hpp"
 
+#include <array>
 #include <cctype>
+#include <cstdio>
 #include <cmath>
 #include <map>
 
@@ -32,38 +34,29 @@ namespace linkbox::input {
 
 namespace {
 
-// An infinite bound ([-inf, 1], or "inf" as a string): refused with a suggested finite one.
-void reject_unbounded(const TomlReader& r, const toml::node& d, const std::string& what) {
-  const toml::array* a = d.as_array();
-  if (!a || a->size() != 2) return;
-  int infinite = -1;  // bit 0: lower, bit 1: upper
-  double finite_magnitude = 0;
-  std::string written;
-  for (size_t k = 0; k < 2; ++k) {
-    const toml::node& e = *a->get(k);
-    bool inf = false;
-    if (auto* f = e.as_floating_point()) {
-      inf = std::isinf(f->get());
-      if (!inf) finite_magnitude = std::max(finite_magnitude, std::fabs(f->get()));
-      else if (written.empty()) written = f->get() < 0 ? "-inf" : "+inf";
-    } else if (auto* s = e.as_string()) {
-      std::string lower;
-      for (char c : s->get())
-        if (c != ' ') lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      inf = lower == "inf" || lower == "-inf" || lower == "+inf" || lower == "infinity" || lower == "-infinity" ||
-            lower == "+infinity";
-      if (inf && written.empty()) written = s->get();
-    } else if (auto* i = e.as_integer()) {
-      finite_magnitude = std::max(finite_magnitude, std::fabs(static_cast<double>(i->get())));
-    }
-    if (inf) infinite = infinite < 0 ? static_cast<int>(1 << k) : infinite | static_cast<int>(1 << k);
-  }
-  if (infinite < 0) return;
-  r.fail(d, what + " must be finite, found " + written + ": " +
-                unbounded_domain_advice(infinite & 1, infinite & 2, finite_magnitude));
+// Whether a domain end is infinite: a float inf or the string "inf" / "infinity" (any sign).
+bool is_infinite(const toml::node& e) {
+  if (auto* f = e.as_floating_point()) return std::isinf(f->get());
+  auto* s = e.as_string();
+  if (!s) return false;
+  std::string t;
+  for (char c : s->get())
+    if (c != ' ' && c != '+' && c != '-') t += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return t == "inf" || t == "infinity";
 }
 
-model::Variable read_variable(const TomlReader& r, const toml::node& n) {
+// A finite domain end as written: the string, or the number (%g).
+std::string as_text(const toml::node& e) {
+  if (auto* s = e.as_string()) return s->get();
+  char t[32];
+  if (auto* i = e.as_integer()) std::snprintf(t, sizeof t, "%lld", static_cast<long long>(i->get()));
+  else if (auto* f = e.as_floating_point()) std::snprintf(t, sizeof t, "%g", f->get());
+  else return "?";
+  return t;
+}
+
+// A variable; an infinite end of its domain is the default bound, added to `assumed`.
+model::Variable read_variable(const TomlReader& r, const toml::node& n, std::vector<std::string>& assumed) {
   const toml::table& t = r.table(n, "a variable");
   r.only_keys(t, {"name", "domain"}, "a variable");
   model::Variable v;
@@ -74,8 +67,20 @@ model::Variable read_variable(const TomlReader& r, const toml::node& n) {
                   "nan, inf or a function name)");
   const std::string what = "domain of variable '" + v.name + "'";
   const toml::node& d = r.required(t, "domain", what);
-  reject_unbounded(r, d, what);
-  const std::vector<Interval> bounds = r.numbers(d, 2, what);
+  const toml::array* a = d.as_array();
+  if (!a || a->size() != 2) r.numbers(d, 2, what);  // fails with the reader's message
+  std::array<Interval, 2> bounds;
+  std::array<std::string, 2> written;
+  for (size_t k = 0; k < 2; ++k) {
+    const toml::node& e = *a->get(k);
+    if (is_infinite(e)) {
+      bounds[k] = Interval(k == 0 ? -kDefaultBound : kDefaultBound);
+    } else {
+      bounds[k] = r.number(e, what);
+      written[k] = as_text(e);
+    }
+  }
+  if (is_infinite(*a->get(0)) || is_infinite(*a->get(1))) assumed.push_back(assumed_bound(v.name, written[0], written[1]));
   // Outward: the lower end of the lower bound's enclosure, the upper end of the upper one's.
   if (bounds[0].lower() > bounds[1].upper()) r.fail(d, "empty " + what + ": lower bound exceeds upper bound");
   v.domain = Interval(bounds[0].lower(), bounds[1].upper());
@@ -120,7 +125,7 @@ model::System read_polynomial(const toml::table& root, const TomlReader& r) {
   const toml::array& vars = r.array(r.required(root, "variables", "variables"), "variables");
   if (vars.empty()) r.fail(vars, "no variables");
   for (auto& n : vars) {
-    model::Variable v = read_variable(r, n);
+    model::Variable v = read_variable(r, n, s.assumed_bounds);
     if (auto [it, fresh] = declared_on.emplace(v.name, TomlReader::line_of(n)); !fresh)
       r.fail(n,
              "duplicate variable '" + v.name + "' (first declared on line " + std::to_string(it->second) + ")");

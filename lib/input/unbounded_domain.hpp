@@ -1,14 +1,19 @@
 #pragma once
-// An infinite domain bound is refused by every reader with the same advice: linkbox encloses
-// roots in a bounded box only, and a change of variables onto a bounded interval would make
-// the certificates speak of another system, so the message suggests a finite bound rather
-// than inventing one.
+// A domain end that a case file leaves infinite (no domain in Minibex, "oo", "INF" or "inf")
+// is kDefaultBound in magnitude: linkbox encloses roots in a bounded box, and mapping an
+// unbounded domain onto a bounded one would make the certificates speak of another system.
+// The bound is stated, not hidden: the model notes and every headline repeat it (System::
+// assumed_bounds), so "exactly N roots" reads as N roots within it. 1e8 is what IbexSolve's
+// benchmark files write for an unbounded variable.
 #include <string>
 
 namespace linkbox::input {
 
-// "linkbox encloses roots ... e.g. [-1000, 1000]: ..." for a domain whose lower and/or upper
-// end is infinite; the suggestion is a power of ten beyond the finite end's magnitude.
-std::string unbounded_domain_advice(bool lower_infinite, bool upper_infinite, double finite_magnitude);
+inline constexpr double kDefaultBound = 1e8;
+inline constexpr const char* kDefaultBoundText = "1e8";  // as written in messages and models
+
+// "x in [-1e8, 1e8]" for the variable `name` whose ends `lower`, `upper` (as written; empty
+// when infinite) were completed by the default bound.
+std::string assumed_bound(const std::string& name, const std::string& lower, const std::string& upper);
 
 }  // namespace linkbox::input

@@ -83,6 +83,19 @@ Interval log(const Interval& x) {
   return apply(x, mpfi_log);
 }
 
+Interval sinh(const Interval& x) { return apply(x, mpfi_sinh); }
+Interval cosh(const Interval& x) { return apply(x, mpfi_cosh); }
+Interval tanh(const Interval& x) { return apply(x, mpfi_tanh); }
+Interval asinh(const Interval& x) { return apply(x, mpfi_asinh); }
+Interval acosh(const Interval& x) {
+  if (x.lower() < 1) throw std::domain_error("acosh: argument below 1");
+  return apply(x, mpfi_acosh);
+}
+Interval atanh(const Interval& x) {
+  if (x.lower() < -1 || x.upper() > 1) throw std::domain_error("atanh: argument outside [-1, 1]");
+  return apply(x, mpfi_atanh);
+}
+
 Interval angle_from_half_tangent(const Interval& t, int half_turns) {
   Mp a(t), r, p;
   mpfi_atan(r.v, a.v);

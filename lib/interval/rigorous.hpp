@@ -25,6 +25,14 @@ Interval atan2(const Interval& y, const Interval& x);
 Interval sqrt(const Interval& x);  // throws std::domain_error for negative x
 Interval exp(const Interval& x);
 Interval log(const Interval& x);   // throws std::domain_error for x <= 0
+Interval sinh(const Interval& x);
+Interval cosh(const Interval& x);
+Interval tanh(const Interval& x);
+// Inverses: any end outside the domain (acosh: x >= 1, atanh: |x| <= 1) throws
+// std::domain_error; atanh(+-1) is +-infinity.
+Interval asinh(const Interval& x);
+Interval acosh(const Interval& x);
+Interval atanh(const Interval& x);
 
 // Joint angle from its half-angle tangent t = tan(phi/2) in a sub-problem shifted by
 // `half_turns` * pi: phi = 2 atan(t) + half_turns * pi.

@@ -4,7 +4,8 @@
 
 namespace linkbox::model {
 
-CompiledSystem::CompiledSystem(const std::vector<Polynomial>& equations, size_t variables, Arith arith)
+CompiledSystem::CompiledSystem(const std::vector<Polynomial>& equations, const std::vector<Link>& links,
+                               size_t variables, Arith arith)
     : involved_(equations.size()), max_degree_(variables, 1) {
   for (size_t i = 0; i < equations.size(); ++i) {
     const Polynomial& p = equations[i];
@@ -22,6 +23,7 @@ CompiledSystem::CompiledSystem(const std::vector<Polynomial>& equations, size_t 
       entry_col_.push_back(v);
       partials_.push_back(add(equations[i].derivative(v), arith));
     }
+  add_links(links, variables);
   int offset = 0;
   for (int d : max_degree_) {
     power_offset_.push_back(offset);
@@ -41,6 +43,34 @@ CompiledSystem::Compiled CompiledSystem::add(const Polynomial& p, Arith arith) {
   }
   c.end = static_cast<int>(terms_.size());
   return c;
+}
+
+void CompiledSystem::add_links(const std::vector<Link>& links, size_t variables) {
+  for (size_t k = 0; k < links.size(); ++k) {
+    const Link& l = links[k];
+    if (l.y < 0 || l.a < 0 || l.y >= static_cast<int>(variables) || l.a >= static_cast<int>(variables) || l.y == l.a)
+      throw std::invalid_argument("CompiledSystem: a link uses a variable beyond the box");
+    const int row = static_cast<int>(values_.size() + k);
+    involved_.push_back({std::min(l.y, l.a), std::max(l.y, l.a)});
+    for (int v : involved_.back()) {
+      entry_row_.push_back(row);
+      entry_col_.push_back(v);
+      link_entries_.emplace_back(static_cast<int>(k), v == l.y);
+    }
+    links_.push_back(l);
+  }
+}
+
+FastInterval CompiledSystem::link_value(size_t k, const Interval& y, const Interval& a) const {
+  const Interval v = row_value(links_[k], y, a);
+  return FastInterval(v.lower(), v.upper());
+}
+
+FastInterval CompiledSystem::link_entry(size_t e, const Box& x) const {
+  const auto [k, is_y] = link_entries_[e - partials_.size()];
+  if (is_y) return FastInterval(1.0);
+  const Interval d = row_derivative(links_[k], x[links_[k].a]);
+  return FastInterval(d.lower(), d.upper());
 }
 
 namespace {
@@ -80,17 +110,21 @@ FastInterval CompiledSystem::sum(const Compiled& c, const FastInterval* powers) 
 void CompiledSystem::values(const Box& x, FastInterval* f) const {
   const FastInterval* powers = fill_powers(x);
   for (size_t i = 0; i < values_.size(); ++i) f[i] = sum(values_[i], powers);
+  for (size_t k = 0; k < links_.size(); ++k) f[values_.size() + k] = link_value(k, x[links_[k].y], x[links_[k].a]);
 }
 
 void CompiledSystem::jacobian(const Box& x, FastInterval* j) const {
   const FastInterval* powers = fill_powers(x);
   for (size_t e = 0; e < partials_.size(); ++e) j[e] = sum(partials_[e], powers);
+  for (size_t e = partials_.size(); e < entry_row_.size(); ++e) j[e] = link_entry(e, x);
 }
 
 void CompiledSystem::evaluate(const Box& x, FastInterval* f, FastInterval* j) const {
   const FastInterval* powers = fill_powers(x);
   for (size_t i = 0; i < values_.size(); ++i) f[i] = sum(values_[i], powers);
   for (size_t e = 0; e < partials_.size(); ++e) j[e] = sum(partials_[e], powers);
+  for (size_t k = 0; k < links_.size(); ++k) f[values_.size() + k] = link_value(k, x[links_[k].y], x[links_[k].a]);
+  for (size_t e = partials_.size(); e < entry_row_.size(); ++e) j[e] = link_entry(e, x);
 }
 
 void CompiledSystem::values_at(const double* y, FastInterval* f) const {
@@ -101,6 +135,8 @@ void CompiledSystem::values_at(const double* y, FastInterval* f) const {
     for (int e = 2; e <= max_degree_[v]; ++e) p[e - 1] = p[e - 2] * p[0];  // a point: products are as tight
   }
   for (size_t i = 0; i < values_.size(); ++i) f[i] = sum(values_[i], powers);
+  for (size_t k = 0; k < links_.size(); ++k)
+    f[values_.size() + k] = link_value(k, Interval(y[links_[k].y]), Interval(y[links_[k].a]));
 }
 
 const double* CompiledSystem::float_powers(const double* y) const {
@@ -128,11 +164,16 @@ double CompiledSystem::float_sum(const Compiled& c, const double* powers) const 
 void CompiledSystem::values_float(const double* y, double* f) const {
   const double* powers = float_powers(y);
   for (size_t i = 0; i < values_.size(); ++i) f[i] = float_sum(values_[i], powers);
+  for (size_t k = 0; k < links_.size(); ++k) f[values_.size() + k] = row_value_float(links_[k], y);
 }
 
 void CompiledSystem::jacobian_float(const double* y, double* j) const {
   const double* powers = float_powers(y);
   for (size_t e = 0; e < partials_.size(); ++e) j[e] = float_sum(partials_[e], powers);
+  for (size_t e = partials_.size(); e < entry_row_.size(); ++e) {
+    const auto [k, is_y] = link_entries_[e - partials_.size()];
+    j[e] = is_y ? 1.0 : row_derivative_float(links_[k], y);
+  }
 }
 
 }  // namespace linkbox::model

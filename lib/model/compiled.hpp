@@ -4,7 +4,9 @@
 // built, so one instance serves every thread (the table of powers is per thread). Callers run it
 // inside one RoundingGuard (outward rounding; see interval.hpp), or without one for the
 // unverified float variant. model::Polynomial stays the reference: it is what these tables
-// are built from and what tests compare against.
+// are built from and what tests compare against. Links (model/link.hpp) are rows too, after
+// the polynomials: y - f(a), with the Jacobian entries 1 and -f'(a), enclosed through MPFI.
+#include "model/link.hpp"
 #include "model/polynomial.hpp"
 
 #include <vector>
@@ -15,9 +17,13 @@ class CompiledSystem {
  public:
   CompiledSystem() = default;
   // `arith` = float_unverified takes midpoint coefficients (the unverified variant).
-  CompiledSystem(const std::vector<Polynomial>& equations, size_t variables, Arith arith = Arith::verified);
+  CompiledSystem(const std::vector<Polynomial>& equations, size_t variables, Arith arith = Arith::verified)
+      : CompiledSystem(equations, {}, variables, arith) {}
+  // Rows: the equations, then the links.
+  CompiledSystem(const std::vector<Polynomial>& equations, const std::vector<Link>& links, size_t variables,
+                 Arith arith = Arith::verified);
 
-  int rows() const { return static_cast<int>(values_.size()); }
+  int rows() const { return static_cast<int>(values_.size() + links_.size()); }
   int cols() const { return static_cast<int>(max_degree_.size()); }
 
   // Nonzero pattern of the Jacobian, row by row: entry e is d f_row(e) / d x_col(e).
@@ -53,10 +59,15 @@ class CompiledSystem {
   FastInterval sum(const Compiled& c, const FastInterval* powers) const;
   const double* float_powers(const double* y) const;
   double float_sum(const Compiled& c, const double* powers) const;
+  void add_links(const std::vector<Link>& links, size_t variables);
+  FastInterval link_value(size_t k, const Interval& y, const Interval& a) const;
+  FastInterval link_entry(size_t e, const Box& x) const;  // e >= partials_.size()
 
   std::vector<Term> terms_;
   std::vector<std::pair<int, int>> factors_;
   std::vector<Compiled> values_, partials_;
+  std::vector<Link> links_;
+  std::vector<std::pair<int, bool>> link_entries_;  // per entry after partials_: (link, column is its y)
   std::vector<int> entry_row_, entry_col_;
   std::vector<std::vector<int>> involved_;
   std::vector<int> max_degree_, power_offset_;  // per variable; x_v^e at power_offset_[v] + e - 1

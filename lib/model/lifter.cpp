@@ -4,6 +4,7 @@
 
 #include "interval/rigorous.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -15,6 +16,17 @@ namespace {
 
 // How far a circle unknown's bound of +-1 is moved out (see add_angle_unknowns).
 constexpr double kCircleSlack = 0x1p-20;
+
+// The domain of an unknown that stands for a function of the declared variables (a link's y
+// or argument, a quotient), moved out by kCircleSlack relative to its size: its bounds are
+// the function's extremes over the domain, which an interior root may reach (cosh(x - 1) = 1
+// at x = 1), and a root on the boundary of the lifted domain is not certified in it. Moving
+// them out adds no root: every root of the lifted system has these unknowns equal to their
+// functions of declared variables, which lie within the bounds before the move.
+Interval padded(const Interval& d) {
+  const Interval slack = Interval(kCircleSlack) * (Interval(1.0) + Interval(std::max(-d.lower(), d.upper())));
+  return Interval((Interval(d.lower()) - slack).lower(), (Interval(d.upper()) + slack).upper());
+}
 
 }  // namespace
 
@@ -75,6 +87,8 @@ void Lifter::build() {
   symbol_.assign(2 * angles_.size(), Polynomial());
   image_.assign(n_ + raw_.applications.size(), Polynomial());
   done_.assign(raw_.applications.size(), false);
+  find_cleared();
+  lifting->cleared = cleared_;
   add_declared_unknowns();
   for (auto& use : angles_) lifting->angles.push_back(use.angle);
   add_application_unknowns();
@@ -134,20 +148,29 @@ void Lifter::add_angle_unknowns(int j) {
   }
 }
 
-// Applications in order: sin/cos are their expansions; tan and sqrt get an unknown each.
+// Applications in order: sin/cos of angles are their expansions; tan, sqrt, 1/B and links get
+// an unknown each, except a 1/B whose divisor is cleared.
 void Lifter::add_application_unknowns() {
   for (int k = 0; k < static_cast<int>(raw_.applications.size()); ++k) {
     const Application& a = raw_.applications[k];
     if (done_[k]) continue;  // a tan-only angle's unknown (add_angle_unknowns)
-    if (a.function == Function::sin || a.function == Function::cos) {
+    if (cleared_[k]) {
+      add_cleared_divisor(k);
+      continue;
+    }
+    if (is_angle_use(k) && a.function != Function::tan) {
       image_[n_ + k] = substitute(a.function == Function::cos ? expansions_[k].re : expansions_[k].im, symbol_);
       continue;
     }
     const int index = static_cast<int>(out_.variables.size());
     const Polynomial x = Polynomial::variable(index);
     image_[n_ + k] = x;
+    Elementary f;
     if (a.function == Function::tan) add_tan_unknown(k, x);
-    else add_sqrt_unknown(k, x);
+    else if (a.function == Function::sqrt) add_sqrt_unknown(k, x);
+    else if (a.function == Function::reciprocal) add_reciprocal_unknown(k, x);
+    else if (link_function(a.function, f)) add_link_unknown(k, f, index);
+    else add_link_unknown(k, a.function == Function::sin ? Elementary::sin : Elementary::cos, index);  // linked_
   }
 }
 
@@ -168,6 +191,7 @@ void Lifter::add_sqrt_unknown(int k, const Polynomial& x) {
   Interval range;
   try {
     range = argument_range(k);
+    if (range.upper() < 0) throw std::domain_error("sqrt");
   } catch (const std::domain_error&) {
     fail_application(k, a.text + ": its argument is negative on the whole domain, so the square root is never "
                                  "real");
@@ -178,14 +202,70 @@ void Lifter::add_sqrt_unknown(int k, const Polynomial& x) {
   lifting_->notes.push_back(a.text + " -> an unknown r >= 0 with r^2 = its argument");
 }
 
+// q with q B = 1 (lifting.hpp says why the roots correspond one to one); its domain is
+// 1/(range of B), bounded: a range that holds 0 or is unbounded is cleared (find_cleared).
+void Lifter::add_reciprocal_unknown(int k, const Polynomial& x) {
+  const Application& a = raw_.applications[k];
+  Interval range;
+  try {
+    range = argument_range(k);
+  } catch (const std::domain_error& e) {
+    fail_application(k, a.text + ": the divisor is not defined on the domain (" + e.what() + ")");
+  }
+  add_variable(a.text, padded(Interval(1.0) / range), {Lifting::Source::Kind::application, k});
+  definitions_.emplace_back(x * substitute(a.argument, image_) - one(), a.text + " * divisor = 1");
+  lifting_->notes.push_back(a.text + " -> an unknown q with q * divisor = 1 (the divisor is away from 0 on the domain)");
+}
+
+// y = f(a): y is unknown `y` (added here), a the argument's unknown (argument_unknown).
+void Lifter::add_link_unknown(int k, Elementary f, int y) {
+  const Application& app = raw_.applications[k];
+  Interval range, value;
+  try {
+    range = argument_range(k);
+    value = image(f, range);
+  } catch (const std::domain_error&) {
+    fail_application(k, app.text + ": its argument is outside the domain of " + to_string(f) +
+                            " on the whole domain, so it is never defined");
+  }
+  if (!is_finite(range) || !is_finite(value))
+    fail_application(k, app.text + ": its value is not bounded on the domain (the argument ranges over [" +
+                            format(range.lower()) + ", " + format(range.upper()) +
+                            "]); narrow the domain so that it is");
+  add_variable(app.text, padded(value), {Lifting::Source::Kind::application, k});
+  const int a = argument_unknown(k, f, range);
+  out_.links.push_back({f, y, a, app.text});
+  lifting_->notes.push_back(app.text + " -> an unknown y and the link y = " + to_string(f) +
+                            "(its argument), enclosed through MPFI (not a polynomial equation)");
+}
+
+// The unknown standing for application k's argument A: A itself when it is one unknown, else
+// a new one with the equation a - A = 0 and A's range within f's domain.
+int Lifter::argument_unknown(int k, Elementary f, const Interval& range) {
+  const Polynomial arg = substitute(raw_.applications[k].argument, image_);
+  if (arg.terms().size() == 1) {
+    const auto& [powers, c] = *arg.terms().begin();
+    if (powers.size() == 1 && powers[0].second == 1 && same_bounds(c, Interval(1.0))) return powers[0].first;
+  }
+  Interval domain = range;
+  if (f == Elementary::log) intersect(range, Interval(0.0, kInf), domain);
+  if (f == Elementary::asin || f == Elementary::acos) intersect(range, Interval(-1.0, 1.0), domain);
+  const int a = static_cast<int>(out_.variables.size());
+  const std::string& text = raw_.applications[k].text;
+  add_variable("argument of " + text, padded(domain), {Lifting::Source::Kind::argument, k});
+  definitions_.emplace_back(Polynomial::variable(a) - arg, "argument of " + text);
+  return a;
+}
+
 // Equations and inequalities as typed (what defines the new unknowns comes last, in build).
 void Lifter::add_typed_constraints() {
+  const bool clearing = std::find(cleared_.begin(), cleared_.end(), true) != cleared_.end();
+  const std::string once = clearing ? "once sin and cos are expanded and divisors cleared" : "once sin and cos are expanded";
   for (size_t i = 0; i < raw_.equations.size(); ++i) {
-    Polynomial p = substitute(raw_.equations[i], image_);
+    Polynomial p = clear(substitute(raw_.equations[i], image_), false, -1);
     if (p.is_constant())
-      throw LiftError("equation " + std::to_string(i + 1) +
-                          " is constant once sin and cos are expanded (an identity such as sin(t)^2 + cos(t)^2 = 1, "
-                          "or a contradiction)",
+      throw LiftError("equation " + std::to_string(i + 1) + " is constant " + once +
+                          " (an identity such as sin(t)^2 + cos(t)^2 = 1, or a contradiction)",
                       -1, -1, static_cast<int>(i));
     out_.equations.push_back(std::move(p));
     out_.equation_names.push_back(i < raw_.equation_names.size() ? raw_.equation_names[i] : "");
@@ -193,10 +273,9 @@ void Lifter::add_typed_constraints() {
   for (size_t i = 0; i < raw_.inequalities.size(); ++i) {
     const Inequality& c = raw_.inequalities[i];
     Inequality lifted = c;
-    lifted.g = substitute(c.g, image_);
+    lifted.g = clear(substitute(c.g, image_), true, -1);
     if (lifted.g.is_constant())
-      throw LiftError("inequality \"" + c.name + "\" is constant once sin and cos are expanded", -1, -1, -1,
-                      static_cast<int>(i));
+      throw LiftError("inequality \"" + c.name + "\" is constant " + once, -1, -1, -1, static_cast<int>(i));
     out_.inequalities.push_back(std::move(lifted));
   }
 }
@@ -262,24 +341,9 @@ std::string Lifter::angle_name(const Lifting::Angle& a, const char* f) const {
 Interval Lifter::argument_range(int k) const {
   Box values = raw_domain();
   values.resize(n_ + k + 1, Interval(0.0));
-  for (int i = 0; i < k; ++i) {
-    const Application& a = raw_.applications[i];
-    const Interval x = a.argument.eval(values);
-    switch (a.function) {
-      case Function::sin: values[n_ + i] = rigorous::sin(x); break;
-      case Function::cos: values[n_ + i] = rigorous::cos(x); break;
-      case Function::tan: values[n_ + i] = rigorous::tan(x); break;
-      case Function::sqrt: {
-        Interval nonnegative;
-        if (!intersect(x, Interval(0.0, kInf), nonnegative)) throw std::domain_error("sqrt");
-        values[n_ + i] = rigorous::sqrt(nonnegative);
-        break;
-      }
-    }
-  }
-  const Interval range = raw_.applications[k].argument.eval(values);
-  if (range.upper() < 0) throw std::domain_error("sqrt");
-  return range;
+  for (int i = 0; i < k; ++i)  // a cleared quotient has no enclosure, and k's argument has none of them
+    if (!cleared_[i]) values[n_ + i] = enclose(raw_.applications[i], raw_.applications[i].argument.eval(values));
+  return raw_.applications[k].argument.eval(values);
 }
 
 }  // namespace detail
@@ -295,6 +359,7 @@ System lift(const RawSystem& raw) {
     s = detail::Lifter(raw).run();
   }
   s.interval_constants = raw.interval_constants;
+  s.assumed_bounds = raw.assumed_bounds;
   return s;
 }
 

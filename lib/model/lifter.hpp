@@ -1,7 +1,8 @@
 #pragma once
 // Internal to model::lift (lifting.hpp), which runs a Lifter: lifter_angles.cpp finds the
 // angles, their units, the expansions of sin and cos into their cos and sin, and their
-// charts; lifter.cpp builds the lifted system from them.
+// charts; lifter.cpp builds the lifted system from them; lifter_divisors.cpp clears the
+// divisors that may be 0.
 #include "model/lifting.hpp"
 
 #include <memory>
@@ -50,6 +51,8 @@ class Lifter {
   std::string pole_message(int k, const Interval& range) const;
 
   // The angles (lifter_angles.cpp), in this order.
+  void find_linked();
+  bool is_angle_use(int k) const;  // application k is sin, cos or tan of angles
   void find_angles();
   void choose_unit(size_t j);
   void expand();
@@ -66,6 +69,13 @@ class Lifter {
   void add_application_unknowns();
   void add_tan_unknown(int k, const Polynomial& x);
   void add_sqrt_unknown(int k, const Polynomial& x);
+  void add_reciprocal_unknown(int k, const Polynomial& x);
+  // The divisors that may be 0 (lifter_divisors.cpp).
+  void find_cleared();
+  void add_cleared_divisor(int k);
+  Polynomial clear(Polynomial p, bool even, int application) const;
+  void add_link_unknown(int k, Elementary f, int y);
+  int argument_unknown(int k, Elementary f, const Interval& range);
   void add_typed_constraints();
   void add_angle_constraints();
   std::string add_circle(const Lifting::Angle& a);
@@ -76,6 +86,7 @@ class Lifter {
   const RawSystem& raw_;
   const int n_;
   std::vector<int> angle_of_;  // per declared variable: its angle, or -1
+  std::vector<bool> linked_;   // per application: a sin or cos that is a link
   std::vector<AngleUse> angles_;
   std::vector<Complex> expansions_;  // per application: cos + i sin of its argument (trig only)
   // While building: the lifted polynomial of cos(u_j), sin(u_j) (symbol 2j, 2j + 1), of each
@@ -85,6 +96,10 @@ class Lifter {
   std::vector<Polynomial> image_;
   std::vector<bool> done_;
   std::vector<std::pair<Polynomial, std::string>> definitions_;
+  // Per application: a reciprocal whose divisor is cleared (no unknown), and that divisor
+  // over the lifted unknowns and the earlier cleared quotients.
+  std::vector<bool> cleared_;
+  std::vector<Polynomial> divisors_;
   System out_;
   Lifting* lifting_ = nullptr;
 };

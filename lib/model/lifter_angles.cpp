@@ -16,7 +16,7 @@ using Function = Application::Function;
 // A multiple k of an angle's unit in one argument: cos(k u) has degree |k|.
 constexpr double kMaxMultiple = 64;
 
-bool is_trig(Function f) { return f != Function::sqrt; }
+bool is_trig(Function f) { return f == Function::sin || f == Function::cos || f == Function::tan; }
 
 // p with every y^e replaced by y^(e mod 2) (1 - x^2)^(e div 2): the same polynomial on the
 // circle x^2 + y^2 = 1, of degree at most 1 in y.
@@ -45,12 +45,46 @@ bool occurs(const Polynomial& p, int v) {
 
 }  // namespace
 
+bool Lifter::is_angle_use(int k) const { return is_trig(raw_.applications[k].function) && !linked_[k]; }
+
+// The sin and cos that are links (lifting.hpp): those whose argument is not affine in the
+// declared variables or has a variable that also occurs outside sin, cos and tan (in an
+// equation, an inequality, another function's argument or a linked sin's), to a fixpoint.
+// A case whose trigonometric functions all take angles has none.
+void Lifter::find_linked() {
+  const int count = static_cast<int>(raw_.applications.size());
+  linked_.assign(count, false);
+  std::vector<bool> outside(n_, false);
+  bool changed = true;
+  auto mark = [&](const Polynomial& p) {
+    for (int v : p.variables())
+      if (v < n_ && !outside[v]) outside[v] = changed = true;
+  };
+  for (auto& e : raw_.equations) mark(e);
+  for (auto& c : raw_.inequalities) mark(c.g);
+  while (changed) {
+    changed = false;
+    for (int k = 0; k < count; ++k) {
+      const Application& a = raw_.applications[k];
+      if (!is_trig(a.function) || linked_[k]) {
+        mark(a.argument);
+        continue;
+      }
+      if (a.function == Function::tan) continue;  // tan of a non-angle is refused (find_angles)
+      bool link = a.argument.total_degree() > 1;
+      for (int v : a.argument.variables()) link = link || v >= n_ || outside[v];
+      if (link) linked_[k] = changed = true;
+    }
+  }
+}
+
 // Variables inside sin, cos and tan are angles; they may occur nowhere else.
 void Lifter::find_angles() {
+  find_linked();
   angle_of_.assign(n_, -1);
   for (int k = 0; k < static_cast<int>(raw_.applications.size()); ++k) {
     const Application& a = raw_.applications[k];
-    if (!is_trig(a.function)) continue;
+    if (!is_angle_use(k)) continue;
     if (a.argument.total_degree() > 1)
       fail_application(k, text(k) + ": the argument of " + to_string(a.function) +
                               " must be affine in the variables (a*t + b)");
@@ -72,13 +106,13 @@ void Lifter::find_angles() {
       if (v < n_ && angle_of_[v] >= 0)
         fail_variable(v, "variable '" + name(v) + "' is used inside " + text(angles_[angle_of_[v]].applications[0]) +
                              " and outside sin, cos and tan (in " + where +
-                             "): a variable in sin, cos or tan must occur only there, as an angle, because t and "
-                             "cos(t) are not related by a polynomial (bound an angle by its domain)");
+                             "): tan takes angles only, variables that occur nowhere else (sin and cos take any "
+                             "argument: write tan(t) as sin(t)/cos(t))");
   };
   for (size_t i = 0; i < raw_.equations.size(); ++i) only_inside(raw_.equations[i], "equation " + std::to_string(i + 1));
   for (auto& c : raw_.inequalities) only_inside(c.g, "\"" + c.name + "\"");
   for (int k = 0; k < static_cast<int>(raw_.applications.size()); ++k)
-    if (!is_trig(raw_.applications[k].function)) only_inside(raw_.applications[k].argument, text(k));
+    if (!is_angle_use(k)) only_inside(raw_.applications[k].argument, text(k));
 }
 
 // The coefficient of v in an affine argument.
@@ -164,7 +198,7 @@ void Lifter::expand() {
   }
   for (int k = 0; k < static_cast<int>(raw_.applications.size()); ++k) {
     const Application& a = raw_.applications[k];
-    if (!is_trig(a.function)) continue;
+    if (!is_angle_use(k)) continue;
     if (a.function == Function::tan && a.argument.variables().size() == 1 &&
         angles_[angle_of_[a.argument.variables()[0]]].angle.chart == Chart::tan_only)
       continue;

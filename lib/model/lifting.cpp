@@ -42,8 +42,49 @@ const char* to_string(Application::Function f) {
     case Function::cos: return "cos";
     case Function::tan: return "tan";
     case Function::sqrt: return "sqrt";
+    case Function::reciprocal: return "1/";
+    default: {
+      Elementary e;
+      if (link_function(f, e)) return to_string(e);
+    }
   }
   return "?";
+}
+
+bool link_function(Application::Function f, Elementary& out) {
+  switch (f) {
+    case Function::exp: out = Elementary::exp; return true;
+    case Function::log: out = Elementary::log; return true;
+    case Function::sinh: out = Elementary::sinh; return true;
+    case Function::cosh: out = Elementary::cosh; return true;
+    case Function::tanh: out = Elementary::tanh; return true;
+    case Function::asin: out = Elementary::asin; return true;
+    case Function::acos: out = Elementary::acos; return true;
+    case Function::atan: out = Elementary::atan; return true;
+    default: return false;
+  }
+}
+
+Interval enclose(const Application& a, const Interval& x) {
+  switch (a.function) {
+    case Function::sin: return rigorous::sin(x);
+    case Function::cos: return rigorous::cos(x);
+    case Function::tan: return rigorous::tan(x);  // throws at a pole
+    case Function::sqrt: {
+      Interval nonnegative;
+      if (!intersect(x, Interval(0.0, kInf), nonnegative))
+        throw std::domain_error(a.text + ": negative argument throughout");
+      return rigorous::sqrt(nonnegative);
+    }
+    case Function::reciprocal:
+      if (zero_in(x)) throw std::domain_error(a.text + ": the divisor may be 0");
+      return Interval(1.0) / x;
+    default: {
+      Elementary e;
+      link_function(a.function, e);
+      return image(e, x);
+    }
+  }
 }
 
 bool same(const Polynomial& a, const Polynomial& b) {
@@ -68,23 +109,8 @@ Box Lifting::to_lifted(const Box& box) const {
   // Every application's value in order (arguments refer to earlier ones only).
   Box values(n + applications.size(), Interval(0.0));
   std::copy(box.begin(), box.begin() + n, values.begin());
-  for (size_t k = 0; k < applications.size(); ++k) {
-    const Application& a = applications[k];
-    const Interval x = a.argument.eval(values);
-    Interval& v = values[n + k];
-    switch (a.function) {
-      case Function::sin: v = rigorous::sin(x); break;
-      case Function::cos: v = rigorous::cos(x); break;
-      case Function::tan: v = rigorous::tan(x); break;  // throws at a pole
-      case Function::sqrt: {
-        Interval nonnegative;
-        if (!intersect(x, Interval(0.0, kInf), nonnegative))
-          throw std::domain_error(a.text + ": negative argument throughout");
-        v = rigorous::sqrt(nonnegative);
-        break;
-      }
-    }
-  }
+  for (size_t k = 0; k < applications.size(); ++k)  // a cleared quotient: no unknown, no argument has it
+    if (k >= cleared.size() || !cleared[k]) values[n + k] = enclose(applications[k], applications[k].argument.eval(values));
   Box out;
   for (const Source& src : sources) {
     switch (src.kind) {
@@ -102,6 +128,7 @@ Box Lifting::to_lifted(const Box& box) const {
         break;
       }
       case Source::Kind::application: out.push_back(values[n + src.index]); break;
+      case Source::Kind::argument: out.push_back(applications[src.index].argument.eval(values)); break;
     }
   }
   return out;

@@ -1,7 +1,8 @@
 #pragma once
 // Functions of variables lifted to polynomial equations in new unknowns, so that the rest of
-// linkbox (propagation, Newton, LP, certification) sees a polynomial system, and the record
-// that maps its roots back to the case's own variables one to one.
+// linkbox (propagation, Newton, LP, certification) sees a polynomial system (and links, for
+// the functions no polynomial relates to their argument), and the record that maps its roots
+// back to the case's own variables one to one.
 //
 //  - A variable t used only inside sin, cos and tan is an angle. Each argument must be
 //    affine, a*t + b (several angles may be summed), and the coefficients of one angle must
@@ -20,13 +21,37 @@
 //    A domain wider than a full turn (u's width provably > 2 pi) is rejected: the map back
 //    from (c, s) would not be one to one. A full turn (e.g. [-pi, pi]) is the whole circle:
 //    a root on the seam is one root, reported near the domain's upper end.
-//    A variable used both inside sin/cos/tan and outside them is rejected: t and cos(t) are
-//    not related by any polynomial equation.
+//    sin and cos of anything else (an argument that is not affine, or has a variable that
+//    also occurs outside sin, cos and tan) are links, below: t and cos(t) are not related by
+//    any polynomial equation. tan of such an argument is rejected.
 //  - tan(A) of an angle expression that is not "tan only": an unknown tau with tau cos(A) =
 //    sin(A); A's range over the domain must avoid the poles (tau's domain is tan of it).
 //  - sqrt(A) (and A^(k + 1/2)) of any expression: an unknown r with r^2 = A, r >= 0 (the
 //    domain of r is [0, sqrt(max A)]).
-// Every coefficient and domain is enclosed rigorously (MPFI for sin, cos, tan, atan2).
+//  - 1/B (a division by an expression with variables, A/B = A * (1/B)): an unknown q with
+//    q B = 1 when B's range over the domain excludes 0 (q's domain is 1/that range). The
+//    roots correspond one to one: q B = 1 forces B != 0 and q = 1/B, so no root is lost and
+//    none is added (not even where A = B = 0, which q B - A = 0 would admit), and a root
+//    certified in the lifted system is one of the case's.
+//  - 1/B where B's range may hold 0 (or is unbounded, or B divides by such a divisor): B is
+//    cleared. An equation of degree m in q = 1/B is multiplied by B^m, an inequality by B^e
+//    (e = m rounded up to even, so its sign is kept), which leaves polynomials (later
+//    divisors first, as a divisor may hold earlier quotients); and the strict inequality
+//    -B^2 < 0 is added. Where B != 0 the cleared constraints hold exactly where the case's
+//    do, so no root is lost; where B = 0 the case's expressions are undefined and -B^2 < 0
+//    fails, so no such point is counted (a root of the cleared equations where the enclosure
+//    cannot decide the sign of B is unresolved, as on any inequality's boundary). Any other
+//    function of an expression holding such a quotient is refused (its range is unbounded).
+//  - exp, log, sinh, cosh, tanh, asin, acos, atan (and sin, cos as above) of any expression
+//    A, which no polynomial relates to its argument: an unknown y and a link y = f(a)
+//    (model/link.hpp), used only where no polynomial lifting applies, where a is A
+//    itself when A is one variable, else a new unknown with the equation a - A = 0. The
+//    domain of y is f(range of A), which must be bounded (log: A's range must stay above 0);
+//    the domain of a is A's range within f's domain (log: a >= 0; asin, acos: [-1, 1]), which
+//    only drops points where f is not defined. Roots correspond one to one (y and a are
+//    functions of the declared variables).
+// Every coefficient and domain is enclosed rigorously (MPFI for sin, cos, tan, atan2 and the
+// functions of links).
 #include "model/polynomial.hpp"
 
 #include <stdexcept>
@@ -38,12 +63,19 @@ namespace linkbox::model {
 // A function applied to an expression with variables, as the parser meets it. In a
 // RawSystem, variable index n + k (n = declared variables) stands for application k.
 struct Application {
-  enum class Function { sin, cos, tan, sqrt };
+  enum class Function { sin, cos, tan, sqrt, exp, log, sinh, cosh, tanh, asin, acos, atan, reciprocal };
   Function function;
   Polynomial argument;  // over the declared variables and the applications before this one
   std::string text;     // as written, e.g. "sin(2*t + pi/4)": names and messages
 };
 const char* to_string(Application::Function f);
+// An enclosure of the application's value where its argument is in `x` (reciprocal: 1/x).
+// Throws std::domain_error when no point of x is in the function's domain (sqrt: x < 0; tan:
+// a pole; reciprocal: x holds 0; log: x <= 0; asin, acos: outside [-1, 1]).
+Interval enclose(const Application& a, const Interval& x);
+// The link function of `f` (exp, log, sinh, cosh, tanh, asin, acos, atan); false for the
+// functions lifted to polynomial equations.
+bool link_function(Application::Function f, Elementary& out);
 
 // A system as typed, before lifting: equations and inequalities over the declared
 // variables and the applications.
@@ -54,6 +86,7 @@ struct RawSystem {
   std::vector<Inequality> inequalities;
   std::vector<Application> applications;
   std::vector<std::string> interval_constants;  // as System::interval_constants
+  std::vector<std::string> assumed_bounds;      // as System::assumed_bounds
 };
 
 // What cannot be lifted. `variable` (declared index), `application`, `equation` or
@@ -87,23 +120,24 @@ struct Lifting {
   };
   // Where each lifted variable comes from.
   struct Source {
-    enum class Kind { declared, cos, sin, tan_angle, application } kind;
-    int index;  // declared variable, angle, angle, application
+    enum class Kind { declared, cos, sin, tan_angle, application, argument } kind;
+    int index;  // declared variable, angle, angle, application, application (a link's argument)
   };
 
   std::vector<Variable> declared;         // the case's own variables: what is reported
   std::vector<Application> applications;  // as parsed
   std::vector<Angle> angles;
   std::vector<Source> sources;            // one per lifted variable
+  std::vector<bool> cleared;              // per application: a cleared divisor's 1/B (no unknown)
   std::vector<std::string> notes;         // what was lifted, one line each
 
   // Rigorous enclosure of the declared variables over a box of lifted ones. Every point of
   // the box that satisfies the lifted system maps into it (angles by atan2, acos, asin,
   // atan on their branch).
   Box to_declared(const Box& lifted) const;
-  // Rigorous enclosure of the lifted variables over a box of declared ones (cos, sin, tan
-  // and sqrt of the arguments). Throws std::domain_error when the box meets a pole of a tan
-  // or makes a sqrt's argument negative throughout.
+  // Rigorous enclosure of the lifted variables over a box of declared ones (the functions of
+  // the arguments, and the arguments of links). Throws std::domain_error (see enclose) when
+  // the box meets a pole of a tan, makes a sqrt's argument negative throughout, and so on.
   Box to_lifted(const Box& declared) const;
 };
 

@@ -1,6 +1,7 @@
 #pragma once
 // Sparse polynomials with interval coefficients, and the systems linkbox solves.
 #include "interval/box.hpp"
+#include "model/link.hpp"
 
 #include <map>
 #include <memory>
@@ -86,12 +87,19 @@ struct System {
   // Constraints that select among the roots: pruning may use them (a box where one provably
   // fails holds no root of interest); roots are reported only where all of them hold.
   std::vector<Inequality> inequalities;
+  // Equations y = f(a) that are not polynomials (model/link.hpp); each counts as an equation.
+  // Whatever proves a box empty or a root certified must see them: a contractor may ignore
+  // them only where fewer constraints are still sound (a relaxation).
+  std::vector<Link> links;
   // When the case's own variables were lifted (functions of variables, model/lifting.hpp):
   // how they follow from `variables` and back. Null: `variables` are the case's own.
   std::shared_ptr<const Lifting> lifting;
   // The genuine interval constants the coefficients use (as written, e.g. "[0.9, 1.1]"): the
   // system is then a family, and its roots are claimed for every value of them.
   std::vector<std::string> interval_constants;
+  // Variables whose domain the case file left unbounded, as bounded by default ("x in [-1e8,
+  // 1e8]", input/unbounded_domain.hpp): every claim is within them.
+  std::vector<std::string> assumed_bounds;
 
   Box domain() const;
   bool is_multi_affine() const;

@@ -1,5 +1,7 @@
 #include "prune/hc4.hpp"
 
+#include "prune/links.hpp"
+
 #include <cmath>
 
 namespace linkbox::prune {
@@ -39,8 +41,9 @@ bool project_power(Interval& x, const FastInterval& p, int e) {
 
 }  // namespace
 
-Hc4::Hc4(const std::vector<model::Polynomial>& equations, Arith arith, const std::vector<model::Inequality>& inequalities)
-    : equation_count_(equations.size()), arith_(arith) {
+Hc4::Hc4(const std::vector<model::Polynomial>& equations, Arith arith, const std::vector<model::Inequality>& inequalities,
+         std::vector<model::Link> links)
+    : equation_count_(equations.size()), links_(std::move(links)), arith_(arith) {
   auto add = [&](const model::Polynomial& e) {
     std::vector<Term> terms;
     for (auto& [p, c] : e.terms()) terms.push_back({coefficient_for(arith, c), p});
@@ -100,6 +103,7 @@ Outcome Hc4::revise(Box& box) {
       }
     }
   }
+  if (!narrow_links(links_, box, shrunk)) return Outcome::empty;
   return shrunk ? Outcome::shrunk : Outcome::unchanged;
 }
 

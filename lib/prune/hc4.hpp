@@ -3,6 +3,7 @@
 // variable), the classic constraint-propagation baseline. Every occurrence x^e is projected
 // (e-th roots: both branches for even e). Equations project the sum onto
 // 0, inequalities g <= 0 (or < 0) onto (-inf, 0]: a box where g > 0 throughout is empty.
+// Links y = f(a) are revised after them (prune/links.hpp).
 #include "model/polynomial.hpp"
 #include "prune/contractor.hpp"
 
@@ -12,7 +13,7 @@ class Hc4 final : public Contractor {
  public:
   // Arith::float_unverified: the unverified variant (midpoint coefficients, nearest rounding).
   explicit Hc4(const std::vector<model::Polynomial>& equations, Arith arith = Arith::verified,
-               const std::vector<model::Inequality>& inequalities = {});
+               const std::vector<model::Inequality>& inequalities = {}, std::vector<model::Link> links = {});
   std::string name() const override { return arith_ == Arith::verified ? "hc4" : "hc4-float"; }
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override { return std::make_unique<Hc4>(*this); }
@@ -25,6 +26,7 @@ class Hc4 final : public Contractor {
   std::vector<std::vector<Term>> equations_;  // then the inequalities' g
   size_t equation_count_ = 0;
   std::vector<char> strict_;  // per inequality
+  std::vector<model::Link> links_;
   std::vector<FastInterval> value_, prefix_, suffix_;  // scratch
   Arith arith_;
   Outcome revise(Box& box);

@@ -10,8 +10,9 @@ namespace {
 bool excludes_zero(const FastInterval& x) { return x.lower() > 0 || x.upper() < 0; }
 }  // namespace
 
-IntervalNewton::IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, Arith arith)
-    : system_(equations, variables, arith), arith_(arith) {}
+IntervalNewton::IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, Arith arith,
+                               const std::vector<model::Link>& links)
+    : system_(equations, links, variables, arith), arith_(arith) {}
 
 Outcome IntervalNewton::contract(Box& box) {
   return with_rounding(arith_, [&] { return step(box); });

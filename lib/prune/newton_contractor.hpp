@@ -16,7 +16,9 @@ class IntervalNewton final : public Contractor {
  public:
   // Arith::float_unverified evaluates with midpoint coefficients in round-to-nearest (the
   // unverified variant).
-  IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, Arith arith = Arith::verified);
+  // Links are rows too (model/compiled.hpp).
+  IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, Arith arith = Arith::verified,
+                 const std::vector<model::Link>& links = {});
   std::string name() const override { return arith_ == Arith::verified ? "newton" : "newton-float"; }
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override { return std::make_unique<IntervalNewton>(*this); }

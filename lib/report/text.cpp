@@ -1,5 +1,7 @@
 #include "report/text.hpp"
 
+#include <algorithm>
+
 namespace linkbox::report {
 
 namespace {
@@ -104,6 +106,19 @@ void print_map(std::FILE* out, const std::vector<std::string>& names, const veri
   }
 }
 
+// A curve cluster without a map: what its crossings show, and that it is not a proof.
+void print_crossings(std::FILE* out, const verify::ClusterReport& cl) {
+  size_t dropped = 0;
+  for (auto& x : cl.crossings) dropped = std::max(dropped, x.dropped_equations.size());
+  std::fprintf(out, "  curve, not proved: %zu boxes, %d/%zu crossings certified", cl.boxes.size(), cl.crossings_certified,
+               cl.crossings.size());
+  if (dropped)
+    std::fprintf(out, " (a root of all equations but %zu on a face; %s contains 0 there)\n", dropped,
+                 dropped == 1 ? "the other" : "the others");
+  else
+    std::fprintf(out, " (a root on a face of each)\n");
+}
+
 }  // namespace
 
 void print_verification(std::FILE* out, const formulate::LoadedCase& c, const verify::VerifyReport& v) {
@@ -120,8 +135,7 @@ void print_verification(std::FILE* out, const formulate::LoadedCase& c, const ve
     if (cl.status == verify::ClusterStatus::curve && cl.map)
       print_map(out, names, cl);
     else if (cl.status == verify::ClusterStatus::curve)
-      std::fprintf(out, "  curve: %zu boxes, %d/%zu crossings certified\n", cl.boxes.size(), cl.crossings_certified,
-                   cl.crossings.size());
+      print_crossings(out, cl);
     else if (cl.status == verify::ClusterStatus::unverified)
       std::fprintf(out, "  unverified cluster of %zu boxes: %s\n", cl.boxes.size(), cl.reason.c_str());
     else if (cl.status == verify::ClusterStatus::infeasible)

@@ -29,7 +29,7 @@ Bisector::Bisector(Bisect rule, const formulate::SubProblem& sub, double sigma)
     for (size_t i = 0; i < sub.system.variables.size(); ++i) dims_.push_back(static_cast<int>(i));
   if (rule_ == Bisect::automatic) rule_ = sub.clipping ? Bisect::widest : Bisect::smear;
   if (rule_ == Bisect::smear)
-    compiled_ = std::make_shared<const model::CompiledSystem>(system.equations, system.variables.size());
+    compiled_ = std::make_shared<const model::CompiledSystem>(system.equations, system.links, system.variables.size());
 }
 
 int Bisector::choose(const Box& box, int depth) const {

@@ -4,6 +4,7 @@
 #include "prune/acid.hpp"
 #include "prune/hc4.hpp"
 #include "prune/lifted.hpp"
+#include "prune/links.hpp"
 #include "prune/lp_relaxation.hpp"
 #include "prune/newton_contractor.hpp"
 #include "prune/trapezoid.hpp"
@@ -30,7 +31,9 @@ std::unique_ptr<Contractor> make_trapezoid(const StrategyOptions& options, const
 std::unique_ptr<Contractor> make_lp(const StrategyOptions& options, const formulate::SubProblem& sub) {
   const auto backend = options.arith != Arith::verified ? prune::lp::LpBackend::float_trusted : options.lp;
   if (sub.lph) return std::make_unique<prune::LpRelaxation>(*sub.lph, backend);
-  // Any polynomial system, lifted to L/P/H form around the search's own variables.
+  // Any polynomial system, lifted to L/P/H form around the search's own variables. Links
+  // (y = f(a)) are left out: a relaxation of fewer constraints holds every root still, and
+  // the Links contractor that runs first with it (make_pruning) prunes by them.
   model::LphSystem lph = formulate::to_lph(sub.system);
   auto inner = std::make_unique<prune::LpRelaxation>(lph, backend);
   return std::make_unique<prune::Lifted>(std::move(lph), sub.system.variables.size(), std::move(inner));
@@ -38,7 +41,7 @@ std::unique_ptr<Contractor> make_lp(const StrategyOptions& options, const formul
 
 std::unique_ptr<Contractor> make_hc4(const StrategyOptions& options, const formulate::SubProblem& sub) {
   const model::System& pruned = sub.pruned();
-  return std::make_unique<prune::Hc4>(pruned.equations, options.arith, pruned.inequalities);
+  return std::make_unique<prune::Hc4>(pruned.equations, options.arith, pruned.inequalities, pruned.links);
 }
 
 std::unique_ptr<Contractor> make_acid(const StrategyOptions& options, const formulate::SubProblem& sub) {
@@ -51,7 +54,8 @@ std::unique_ptr<Contractor> make_acid(const StrategyOptions& options, const form
 
 std::unique_ptr<Contractor> make_newton(const StrategyOptions& options, const formulate::SubProblem& sub) {
   const model::System& pruned = sub.pruned();
-  return std::make_unique<prune::IntervalNewton>(pruned.equations, pruned.variables.size(), options.arith);
+  return std::make_unique<prune::IntervalNewton>(pruned.equations, pruned.variables.size(), options.arith,
+                                                 pruned.links);
 }
 
 struct Row {
@@ -166,6 +170,13 @@ Pruning make_pruning(const Strategy& strategy, const StrategyOptions& options, c
   if (strategy.is_auto()) throw std::logic_error("make_pruning: \"auto\" is resolved by candidates() first");
   std::vector<std::unique_ptr<Contractor>> members;
   std::vector<int> stages;
+  // Links (y = f(a)) are read by HC4 and Newton only: their own contractor runs first in
+  // every pass, whatever the strategy, so no member's strategy can leave them unchecked.
+  if (!sub.pruned().links.empty()) {
+    members.push_back(std::make_unique<prune::Links>(sub.pruned().links));
+    stages.push_back(0);
+  }
+  const size_t links = members.size();
   int stage = 0;  // empty stages take no number
   for (auto& contractors : strategy.stages()) {
     for (ContractorKind kind : contractors) {
@@ -174,7 +185,7 @@ Pruning make_pruning(const Strategy& strategy, const StrategyOptions& options, c
     }
     stage += !contractors.empty();
   }
-  if (members.empty()) throw std::invalid_argument("no pruning strategy given");
+  if (members.size() == links) throw std::invalid_argument("no pruning strategy given");
   auto sequence = std::make_unique<prune::Sequence>(std::move(members), sub.split_dims, std::move(stages), options.stall);
   return {strategy, std::move(sequence)};
 }

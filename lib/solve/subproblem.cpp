@@ -14,7 +14,7 @@ SubSettings settings_for(const RunOptions& options, const formulate::SubProblem&
 void describe(const formulate::SubProblem& sub, size_t i, SubResult& s) {
   s.index = i;
   s.label = sub.label;
-  s.equations = static_cast<int>(sub.system.equations.size());
+  s.equations = static_cast<int>(sub.system.equations.size() + sub.system.links.size());  // a link is one
   s.variables = static_cast<int>(sub.system.variables.size());
 }
 
@@ -28,7 +28,9 @@ void finish(const formulate::SubProblem& sub, const Params& params, Budget& budg
     refine(r, work, sub, params, budget, *ran.pruning.sequence, ran.certifier, bisector);
   s.solutions = std::move(r.solutions);
   s.certified = std::move(r.certified);
-  for (auto& b : s.solutions) s.residuals.push_back(model::residual_bound(sub.system.equations, b));
+  for (auto& b : s.solutions)
+    s.residuals.push_back(std::max(model::residual_bound(sub.system.equations, b),
+                                   model::residual_bound(sub.system.links, b)));
   s.stats = r.stats;
   s.pending = std::move(r.pending);
   s.volume_left = r.volume_left;

@@ -6,19 +6,28 @@ namespace linkbox::solve {
 
 namespace {
 
+// Adds `counters` (when given) under `name`, listing the name in any case.
+void add_named(CaseResult& result, const std::string& name, const prune::Counters* counters) {
+  auto at = std::find(result.contractor_names.begin(), result.contractor_names.end(), name);
+  if (at == result.contractor_names.end()) {
+    result.contractor_names.push_back(name);
+    result.counters.emplace_back();
+    at = result.contractor_names.end() - 1;
+  }
+  if (counters) result.counters[at - result.contractor_names.begin()] += *counters;
+}
+
 // By name: sub-problems may have run different strategies ("auto" chooses per sub-problem).
+// A system with links ran the "links" contractor before the strategy's (make_pruning): one
+// member more than the strategy names.
 void add_counters(CaseResult& result, const SubResult& s) {
+  size_t members = 0;
+  for (auto& stage : s.strategy.stages()) members += stage.size();
   size_t k = 0;
+  if (s.counters.size() == members + 1) add_named(result, "links", &s.counters[k++]);
   for (auto& stage : s.strategy.stages())
     for (ContractorKind kind : stage) {
-      const std::string name = name_of(kind);
-      auto at = std::find(result.contractor_names.begin(), result.contractor_names.end(), name);
-      if (at == result.contractor_names.end()) {
-        result.contractor_names.push_back(name);
-        result.counters.emplace_back();
-        at = result.contractor_names.end() - 1;
-      }
-      if (k < s.counters.size()) result.counters[at - result.contractor_names.begin()] += s.counters[k];
+      add_named(result, name_of(kind), k < s.counters.size() ? &s.counters[k] : nullptr);
       ++k;
     }
 }

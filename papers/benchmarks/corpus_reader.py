@@ -39,6 +39,10 @@ REASONS = [
     ("inequality", r"inequality"),
     ("unbounded domain", r"has no domain|must be finite"),
     ("division by variables", r"division by an expression with variables"),
+    ("divisor may be 0 on the domain", r"division by an expression that may be 0"),
+    ("function of a quotient whose divisor may be 0", r"has a divisor that may be 0"),
+    ("function outside its domain", r"outside the domain of"),
+    ("function value unbounded on the domain", r"value is not bounded"),
 ]
 
 
@@ -168,14 +172,9 @@ count (its headline says why). Both finish on {len(both)} files; the counts agre
 
 {table(solved, ["file", "was refused for", "linkbox", "certified", "exact", "ibexsolve", "distinct", "compare", "linkbox's headline when not exact"])}
 
-Where a complete run states no exact count here, the unresolved clusters are roots on the
-domain's boundary: the Trigo1 and Trigonometric files declare their angles on
-`[1.e-8, 2*pi-1.e-8]`, `[0, 2*pi-1.e-3]` or `[0.1, 2*pi]`, and the systems have roots at 0 (or
-2 pi), on the boundary or within 1e-8 of it. linkbox certifies such a root but cannot decide
-on which side of the boundary it lies, so it leaves it out of the count and says so.
-A run with no result in {OUTER_TIMEOUT} s finished its search within the time limit but was
-still verifying (Trigo1-1000sp: 2001 unknowns once the angles are lifted; the time limit does
-not bound verification).
+Where a complete run states no exact count here, its headline says why. A run with no result
+in {OUTER_TIMEOUT} s finished its search within the time limit but was still verifying (the
+time limit does not bound verification).
 
 ## Still refused
 

@@ -1,7 +1,8 @@
 // Functions of variables (model/lifting.hpp): a system written with sin, cos, tan and sqrt
-// must give, in the variables the user declared and one to one, the roots that its closed form
-// or its hand-lifted twin gives; what cannot be lifted soundly is an InputError naming the
-// line; unbounded domains are rejected with a suggested bound.
+// (links and divisions: test_links.cpp) must give, in the variables the user declared and one
+// to one, the roots that its closed form or its hand-lifted twin gives; what cannot be lifted
+// soundly is an InputError naming the line; an unbounded domain gets the default bound, which
+// the headline states.
 #include "formulate/load.hpp"
 #include "tests/solved_case.hpp"
 #include "input/expression.hpp"
@@ -288,13 +289,15 @@ TEST_CASE("functions of variables: what cannot be lifted is an InputError at its
     std::string part;
   };
   const Bad bad[] = {
-      {R"~({ name = "t", domain = [0, 1] })~", R"~("sin(t) + t")~", 4, "used inside sin(t) and outside"},
-      {R"~({ name = "x", domain = [0, 1] })~", R"~("sin(x^2) - 0.5")~", 6, "must be affine in the variables"},
-      {R"~({ name = "x", domain = [0, 1] })~", R"~("sin(sqrt(x)) - 0.5")~", 6, "contains a function of the variables"},
+      {R"~({ name = "t", domain = [0, 1] })~", R"~("tan(t) + t")~", 4, "used inside tan(t) and outside"},
+      {R"~({ name = "x", domain = [0, 1] })~", R"~("tan(x^2) - 0.5")~", 6, "must be affine in the variables"},
+      {R"~({ name = "x", domain = [0, 1] })~", R"~("tan(sqrt(x)) - 0.5")~", 6, "contains a function of the variables"},
       {R"~({ name = "t", domain = [0, 7] })~", R"~("sin(t)")~", 4, "spans more than a full turn"},
       {R"~({ name = "t", domain = [0, 2] })~", R"~("tan(t) - 1")~", 6, "meets a pole of tan"},
       {R"~({ name = "x", domain = [0, 1] })~", R"~("sqrt(x - 5) - 1")~", 6, "negative on the whole domain"},
-      {R"~({ name = "x", domain = [0, 1] })~", R"~("exp(x) - 2")~", 6, "functions apply to constants only, except sin"},
+      {R"~({ name = "x", domain = [0, 1] })~", R"~("log(x - 5) - 2")~", 6, "outside the domain of log on the whole"},
+      {R"~({ name = "x", domain = [0, 1] })~", R"~("log(x) - 2")~", 6, "its value is not bounded on the domain"},
+      {R"~({ name = "x", domain = [-1, 1] })~", R"~("sqrt(1/x) - 2")~", 6, "has a divisor that may be 0"},
       {R"~({ name = "t", domain = [0, 1] })~", R"~("sin(t) + sin(pi*t)")~", 6, "integer multiples of one unit"},
       {R"~({ name = "t", domain = [0, 1] })~", R"~("cos(2*t) - 2*cos(t)^2 + 1")~", 6, "constant once sin and cos"},
       {R"~({ name = "x", domain = [0, 1] })~", R"~("x^(1/3) - 1")~", 6, "non-negative integer or half-integer"},
@@ -311,15 +314,23 @@ TEST_CASE("functions of variables: what cannot be lifted is an InputError at its
   }
 }
 
-TEST_CASE("unbounded domains are rejected with a suggested bound", "[functions][input]") {
-  int line = -1;
-  std::string m = load_error(polynomial_case(R"~({ name = "x", domain = [-inf, inf] })~", R"~("x - 1")~"), &line);
-  CHECK(m.find("domain of variable 'x' must be finite, found -inf") == 0);
-  CHECK(m.find("e.g. [-1000, 1000]") != std::string::npos);
-  CHECK(line == 3);
-  m = load_error(polynomial_case(R"~({ name = "x", domain = [-5e3, "inf"] })~", R"~("x - 1")~"));
-  CHECK(m.find("found inf") != std::string::npos);
-  CHECK(m.find("e.g. [<its lower bound>, 100000]") != std::string::npos);
+TEST_CASE("an unbounded domain is searched within the default bound, and the headline says so",
+          "[functions][input]") {
+  // x^2 = 4 with x in [-inf, inf]: both roots; with x in [-5e3, "inf"], one; x - 2e8 = 0 has
+  // its root beyond the bound, so none is claimed there, and the headline says within what.
+  Run both = solve_text(polynomial_case(R"~({ name = "x", domain = [-inf, inf] })~", R"~("x^2 - 4")~"));
+  CHECK(both.roots.size() == 2);
+  CHECK(both.v.exact);
+  CHECK(both.v.headline.find("(with x in [-1e8, 1e8], a default bound)") != std::string::npos);
+  Run half = solve_text(polynomial_case(R"~({ name = "x", domain = [0, "inf"] })~", R"~("x^2 - 4")~"));
+  CHECK(half.roots.size() == 1);
+  CHECK(half.v.headline.find("(with x in [0, 1e8], a default bound)") != std::string::npos);
+  Run beyond = solve_text(polynomial_case(R"~({ name = "x", domain = [-inf, inf] })~", R"~("x - 2e8")~"));
+  CHECK(beyond.roots.empty());
+  CHECK(beyond.v.headline.find("exactly 0 roots in the domain (with x in [-1e8, 1e8]") == 0);
+  // A finite domain is unchanged and says nothing of a bound.
+  Run finite = solve_text(polynomial_case(R"~({ name = "x", domain = [-3, 3] })~", R"~("x^2 - 4")~"));
+  CHECK(finite.v.headline.find("default bound") == std::string::npos);
 }
 
 TEST_CASE("parse_with_functions keeps each distinct application once", "[functions][expression]") {

@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace linkbox;
@@ -134,5 +135,64 @@ TEST_CASE("cyclohexane: the chairs are certified roots inside solution boxes, th
     if (cl.status == verify::ClusterStatus::certified)
       for (int i = 0; i < 6; ++i) CHECK(std::abs(std::abs(median(cl.root[i])) - w) < 1e-9);
     if (cl.status == verify::ClusterStatus::curve) CHECK(2 * static_cast<size_t>(cl.crossings_certified) > cl.crossings.size());
+  }
+}
+
+namespace {
+
+// Whether x, modulo 2 pi, lies within `margin` of the interval.
+bool near_angle(const Interval& box, double x, double margin) {
+  for (int k = -2; k <= 2; ++k) {
+    const double y = x + 2 * M_PI * k;
+    if (box.lower() - margin <= y && y <= box.upper() + margin) return true;
+  }
+  return false;
+}
+
+bool near_box(const Box& out, const Eigen::Vector4d& theta, double margin) {
+  for (int i = 0; i < 4; ++i)
+    if (!near_angle(out[i], theta[i], margin)) return false;
+  return true;
+}
+
+// Bennett's closed form: theta3 = -theta1, theta4 = -theta2, tan(theta1/2) tan(theta2/2) = sqrt 3.
+Eigen::Vector4d bennett_point(double theta1) {
+  const double theta2 = 2 * std::atan2(std::sqrt(3.0), std::tan(theta1 / 2));
+  return {theta1, theta2, -theta1, -theta2};
+}
+
+}  // namespace
+
+TEST_CASE("Bennett 4R: the solution boxes cover its closed-form curve and nothing else", "[linkage][cases][map]") {
+  formulate::LoadedCase c = formulate::load_case(path("cases/linkages/bennett.toml"));
+  const std::vector<Dh> links = {{1, 0, M_PI / 6}, {2, 0, M_PI / 2}, {1, 0, M_PI / 6}, {2, 0, M_PI / 2}};
+  for (const char* prune : {"auto", "lp", "hc4,newton"}) {
+    CAPTURE(prune);
+    solve::RunOptions o;
+    o.progress = false;
+    o.strategy.prune = solve::Strategy::parse(prune);
+    o.params.sigma = 0.1;  // the case's
+    auto r = solve::solve_case(*c.formulation, o);
+    REQUIRE(r.complete);
+    std::vector<Box> outs;
+    for (auto& s : r.subproblems)
+      for (auto& b : s.solutions) outs.push_back(c.formulation->to_output(s.index, b));
+    REQUIRE(!outs.empty());
+    // Every point of the curve is in a solution box (none was discarded) ...
+    for (int k = 0; k < 720; ++k) {
+      const Eigen::Vector4d theta = bennett_point(-M_PI + (k + 0.5) * 2 * M_PI / 720);
+      REQUIRE((dh_product(links, theta) - Eigen::Matrix4d::Identity()).norm() < 1e-12);  // it closes the loop
+      CHECK(std::any_of(outs.begin(), outs.end(), [&](const Box& b) { return near_box(b, theta, 1e-9); }));
+    }
+    // ... and every box is within its own width of the curve (no isolated pose elsewhere).
+    for (const Box& b : outs) {
+      bool near = false;
+      for (int k = 0; k < 4000 && !near; ++k) near = near_box(b, bennett_point(-M_PI + k * 2 * M_PI / 4000), max_width(b));
+      CHECK(near);
+    }
+    auto v = verify::verify_case(*c.formulation, r);
+    CHECK(v.certified_roots == 0);
+    for (auto& cl : v.clusters)
+      if (cl.map && cl.map->proved) CHECK(cl.map->components.size() == 1);
   }
 }

@@ -96,7 +96,7 @@ TEST_CASE("a race on several threads picks the winner and boxes of the one-threa
     REQUIRE(one.subproblems.size() == 1);
     const auto& a = one.subproblems[0];
     REQUIRE(a.race.size() == 2);  // "auto" raced two candidates
-    for (int threads : {2, 3}) {
+    for (int threads : {2, 3, 4}) {
       INFO(threads << " threads");
       o.threads = threads;
       const auto many = solve::solve_case(*c.formulation, o);

@@ -160,7 +160,14 @@ TEST_CASE("expression: division only by constants away from zero", "[expression]
   CHECK(error_message("1/0") == "division by an interval containing zero");
   CHECK(error_column("1/0") == 2);
   CHECK(error_message("x/(pi - pi)") == "division by an interval containing zero");  // [-eps, eps]
-  CHECK(error_message("1/x").find("division by an expression with variables") == 0);
+  CHECK(error_message("1/x").find("division by an expression with variables") == 0);  // parse_polynomial
+  std::vector<model::Application> apps;
+  const model::Polynomial q = input::parse_with_functions("(x + 1)/(x^2 + 1) + 2/x", {"x"}, apps);
+  REQUIRE(apps.size() == 2);  // 1/(x^2 + 1), 1/x
+  CHECK(apps[0].function == model::Application::Function::reciprocal);
+  CHECK(apps[0].text == "1/(x^2 + 1)");
+  CHECK(apps[1].text == "1/x");
+  CHECK(q.variables() == std::vector<int>{0, 1, 2});  // x * q0, q0, q1
   CHECK(contains(parse_constant("1/3") * Interval(3.0), 1.0));
 }
 
