@@ -128,8 +128,16 @@ void map_curve(const formulate::Formulation& f, const std::vector<Box>& member, 
 void map_symmetric_loop(const formulate::Formulation& f, const std::vector<Box>& member, ClusterReport& c) {
   const auto loop = SymmetricLoop::of(f);
   if (!loop) return;
-  c.map = map_symmetric(*loop, member);
-  if (!c.map) return;
+  for (const Box& m : member)
+    if (max_width(m) > kSymmetricMember) return;
+  auto map = map_symmetric(*loop, member);
+  if (!map) return;
+  if (map->arcs.empty()) {
+    c.status = ClusterStatus::empty;
+    c.reason = "proved to hold no root: every piece excluded through the loop's symmetry";
+    return;
+  }
+  c.map = std::move(map);
   c.status = ClusterStatus::curve;
   c.reason = c.map->statement;
 }

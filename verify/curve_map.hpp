@@ -27,8 +27,7 @@ struct MapArc {
   newton::Arc arc;
   // A symmetric loop's arc (verify/symmetric_map.hpp): the rows of D and the preconditioner
   // of its uniqueness test in v (rows[0] < 0: an arc of the kept equations).
-  std::array<int, 3> rows{-1, -1, -1};
-  Eigen::Matrix3d v_preconditioner = Eigen::Matrix3d::Zero();
+  Eigen::MatrixXd v_preconditioner;
 };
 
 struct MapComponent {

@@ -4,6 +4,7 @@
 #include "interval/rigorous.hpp"
 
 #include <Eigen/LU>
+#include <Eigen/SVD>
 
 #include <cmath>
 
@@ -229,34 +230,19 @@ std::optional<SymmetricLoop::RowChoice> SymmetricLoop::choose_rows(const Box& uv
   for (int i = 0; i < 6; ++i) centre[i] = Interval(i < 3 ? median(uv[i]) : 0.0);
   const Eigen::MatrixXd j = newton::midpoint(a_jacobian_v(centre));
   if (!j.allFinite()) return std::nullopt;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd s = svd.singularValues();
+  if (!(s(2) > 1e-12 * s(0))) return std::nullopt;
   RowChoice best;
-  double best_sigma = 0;
-  for (int a = 0; a < 12; ++a)
-    for (int b = a + 1; b < 12; ++b)
-      for (int c = b + 1; c < 12; ++c) {
-        Eigen::Matrix3d m;
-        m << j.row(a), j.row(b), j.row(c);
-        // |det| over the rows' lengths (Hadamard's ratio): 1 for orthogonal rows, 0 singular.
-        const double sigma = std::fabs(m.determinant()) / (m.row(0).norm() * m.row(1).norm() * m.row(2).norm());
-        if (sigma > best_sigma) {
-          best_sigma = sigma;
-          best.rows = {a, b, c};
-          best.c = m.inverse();
-        }
-      }
-  if (!(best_sigma > 0) || !best.c.allFinite()) return std::nullopt;
+  best.c = svd.matrixV() * s.cwiseInverse().asDiagonal() * svd.matrixU().transpose();
+  if (!best.c.allFinite()) return std::nullopt;
   return best;
 }
 
 bool SymmetricLoop::on_subspace(const Box& uv, const RowChoice& choice) const {
   const IMatrix j = a_jacobian_v(toward_subspace(uv));
-  IMatrix g(3, 3);
-  for (int r = 0; r < 3; ++r) {
-    if (choice.rows[r] < 0 || choice.rows[r] >= 12) return false;
-    g.row(r) = j.row(choice.rows[r]);
-  }
-  if (!choice.c.allFinite()) return false;
-  return newton::norm_inf_upper(newton::identity_minus(Eigen::MatrixXd(choice.c), g)) < 1;
+  if (choice.c.rows() != 3 || choice.c.cols() != 12 || !choice.c.allFinite()) return false;
+  return newton::norm_inf_upper(newton::identity_minus(choice.c, j)) < 1;
 }
 
 bool SymmetricLoop::excluded(const Box& uv, const RowChoice& choice) const {
@@ -266,19 +252,15 @@ bool SymmetricLoop::excluded(const Box& uv, const RowChoice& choice) const {
   for (int i = 0; i < 3; ++i) along_u[i] = uv[i];
   const IVector a0 = a_values(mid);
   const IMatrix ju = a_jacobian_u(along_u), jv = a_jacobian_v(uv);
-  IVector rhs(3), offset(3);
-  IMatrix g(3, 3);
-  for (int r = 0; r < 3; ++r) {
-    const int row = choice.rows[r];
-    if (row < 0 || row >= 12) return false;
-    rhs(r) = a0(row);
-    for (int k = 0; k < 3; ++k) rhs(r) += ju(row, k) * (uv[k] - mid[k]);
-    g.row(r) = jv.row(row);
-    offset(r) = uv[r + 3] - mid[r + 3];
+  IVector rhs(12), offset(3);
+  for (int row = 0; row < 12; ++row) {
+    rhs(row) = a0(row);
+    for (int k = 0; k < 3; ++k) rhs(row) += ju(row, k) * (uv[k] - mid[k]);
   }
-  const Eigen::MatrixXd c = choice.c;
-  if (!c.allFinite()) return false;
-  const IVector k = -newton::multiply(c, rhs) + newton::multiply(newton::identity_minus(c, g), offset);
+  for (int r = 0; r < 3; ++r) offset(r) = uv[r + 3] - mid[r + 3];
+  const Eigen::MatrixXd& c = choice.c;
+  if (c.rows() != 3 || c.cols() != 12 || !c.allFinite()) return false;
+  const IVector k = -newton::multiply(c, rhs) + newton::multiply(newton::identity_minus(c, jv), offset);
   for (int i = 0; i < 3; ++i) {
     const Interval image = mid[i + 3] + k(i);
     if (image.upper() < uv[i + 3].lower() || uv[i + 3].upper() < image.lower()) return true;

@@ -52,8 +52,7 @@ class SymmetricLoop {
   // The three rows of A and the preconditioner that make the uniqueness test succeed at the
   // box's centre best (float: they only choose).
   struct RowChoice {
-    std::array<int, 3> rows{};
-    Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+    Eigen::MatrixXd c;  // 3 x 12
   };
   std::optional<RowChoice> choose_rows(const Box& uv) const;
   // The test above over U x W.

@@ -96,6 +96,41 @@ bool not_identity(const SymmetricLoop& loop, const Box& u) {
   return -1 < q.lower() && q.upper() < 1;
 }
 
+// Whether the arc `a` (certified) misses the U of a piece inside its box, or the member (in
+// output variables) the piece was cut from: over each slice of the piece's parameter range,
+// every solution in the arc's box lies in the slice's Krawczyk image at v = 0, and each image
+// misses the piece's other two sides or, carried to the outputs, the member.
+bool arc_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u, const Box& member) {
+  const int p = a.parameter;
+  const auto y = others(p);
+  Interval range;
+  if (!intersect(u[p], a.box[p], range)) return true;
+  constexpr int kSlices = 8;
+  const double step = width_up(range) / kSlices;
+  for (int i = 0; i < kSlices; ++i) {
+    Box slice = a.box;
+    const double lo = range.lower() + i * step;
+    slice[p] = Interval(lo, i + 1 == kSlices ? range.upper() : lo + step);
+    // Krawczyk steps: the slice's solutions stay in each image, so the slice shrinks to it.
+    bool none = false;
+    for (int step = 0; step < 4 && !none; ++step) {
+      bool interior = false;
+      const Box image = reduced_image(loop, slice, p, Eigen::MatrixXd(a.preconditioner), interior);
+      for (int k = 0; k < 2 && !none; ++k) {
+        if (!is_finite(image[k])) return false;
+        none = !intersect(slice[y[k]], image[k], slice[y[k]]);
+      }
+    }
+    if (none) continue;
+    const auto meets = [](const Interval& x, const Interval& z) { return x.lower() <= z.upper() && z.lower() <= x.upper(); };
+    if (!meets(slice[y[0]], u[y[0]]) || !meets(slice[y[1]], u[y[1]])) continue;
+    Box on_arc(6, Interval(0.0));  // the slice's solutions: (t, y) at v = 0
+    for (int k = 0; k < 3; ++k) on_arc[k] = slice[k];
+    if (overlaps(loop.to_output(on_arc), member)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 newton::Arc symmetric_arc_from(const SymmetricLoop& loop, const Box& u, int parameter, const Eigen::MatrixXd& c,
@@ -184,7 +219,6 @@ std::optional<MapArc> certify_symmetric(const SymmetricLoop& loop, const Box& uv
       m.member = member;
       m.piece = uv;
       m.arc = std::move(a);
-      m.rows = rows->rows;
       m.v_preconditioner = rows->c;
       return m;
     }
@@ -243,10 +277,16 @@ std::optional<CurveMap> map_symmetric(const SymmetricLoop& loop, const std::vect
         loop.to_uv(members[k]),
         [&](const Box& piece) {
           auto a = certify_symmetric(loop, piece, k);
-          if (a) map.arcs.push_back(std::move(*a));
-          return a.has_value();
+          if (!a) return false;
+          // The arc's box holds the piece's U, and every solution in it lies on the arc: a
+          // piece whose U the arc misses holds none.
+          if (!arc_misses(loop, a->arc, u_of(piece), members[k])) map.arcs.push_back(std::move(*a));
+          return true;
         },
-        [&](const Box& piece) { return symmetric_piece_empty(loop, piece); },
+        // (u, v) pieces cover more than the member: what lies outside it needs no proof.
+        [&](const Box& piece) {
+          return !overlaps(loop.to_output(piece), members[k]) || symmetric_piece_empty(loop, piece);
+        },
         [&](const Box& piece, PieceKind kind) {
           if (kind != PieceKind::unresolved) return;
           map.unresolved.emplace_back(k, piece);
@@ -255,7 +295,7 @@ std::optional<CurveMap> map_symmetric(const SymmetricLoop& loop, const std::vect
     unresolved_members += unresolved;
     if (k + 1 >= 8 && 2 * unresolved_members > k + 1) return std::nullopt;
   }
-  if (map.arcs.empty()) return std::nullopt;
+  if (map.arcs.empty()) return map.unresolved.empty() ? std::optional(map) : std::nullopt;
   join(members, map);
   return map;
 }

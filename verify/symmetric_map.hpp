@@ -15,11 +15,20 @@
 
 namespace linkbox::verify {
 
+// The width (in the search's variables) a member should have before it is mapped, what
+// `--narrow` should be given: wider pieces neither exclude nor certify, so the search's
+// contractors narrow the boxes first (solve/narrow.hpp).
+constexpr double kSymmetricPiece = 0.005;
+// Members wider than this (output variables) are not mapped: their pieces would not resolve
+// within the bisection depth.
+constexpr double kSymmetricMember = 0.06;
+
 // Bisection depth of a member's pieces.
 constexpr int kSymmetricDepth = 14;
 
 // The map of a cluster (members in output variables, unwrapped); empty when too few members
-// hold arcs to state one.
+// hold arcs to state one. A map with no arcs and no unresolved pieces proves that the cluster
+// holds no solution.
 std::optional<CurveMap> map_symmetric(const SymmetricLoop& loop, const std::vector<Box>& members);
 
 // The arc certificate re-proved from its box in u, parameter, preconditioner, the piece's v
@@ -33,8 +42,10 @@ bool symmetric_piece_empty(const SymmetricLoop& loop, const Box& uv_piece);
 // Walks a member's pieces as map_symmetric does; `is_arc` and `is_empty` decide each piece.
 template <class IsArc, class IsEmpty, class Leaf>
 void walk_symmetric(const Box& uv, IsArc&& is_arc, IsEmpty&& is_empty, Leaf&& leaf, int depth = 0) {
-  if (is_arc(uv)) return leaf(uv, PieceKind::arc);
+  // Emptiness first: a box beside the curve that the search could not empty holds no arc,
+  // though an arc test may succeed in a box grown from it toward the curve.
   if (is_empty(uv)) return leaf(uv, PieceKind::empty);
+  if (is_arc(uv)) return leaf(uv, PieceKind::arc);
   if (depth >= kSymmetricDepth) return leaf(uv, PieceKind::unresolved);
   auto [lo, hi] = bisect(uv, widest_dimension(uv));
   walk_symmetric(lo, is_arc, is_empty, leaf, depth + 1);

@@ -9,6 +9,7 @@
 #include "solve/strategy.hpp"
 #include "verify/certify_case.hpp"
 #include "verify/check.hpp"
+#include "verify/symmetric_map.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -27,11 +28,13 @@ struct Mapped {
   nlohmann::json j;
 };
 
-Mapped solve_text(const std::string& text, const std::string& file, const std::string& prune, double sigma) {
+Mapped solve_text(const std::string& text, const std::string& file, const std::string& prune, double sigma,
+                  double narrow = 0) {
   Mapped m{formulate::load_case_text(text, file), {}, {}};
   solve::RunOptions o;
   o.progress = false;
   o.params.sigma = sigma;
+  o.params.narrow = narrow;
   o.strategy.prune = solve::Strategy::parse(prune);
   const auto r = solve::solve_case(*m.c.formulation, o);
   REQUIRE(r.complete);
@@ -131,6 +134,19 @@ TEST_CASE("a nearly mobile 6R loop is never a proved curve", "[verify][map]") {
   CHECK(proved_maps(m.v) == 0);
   CHECK_FALSE(m.v.maps_proved);
   CHECK(m.v.headline.rfind("exactly", 0) != 0);
+}
+
+TEST_CASE("the mobile 6R, narrowed, maps to one proved closed curve", "[verify][map][slow]") {
+  // Every solution has theta_i = theta_{i+3}; the loop's symmetry proves the map once the
+  // search's contractors narrow its boxes.
+  const std::string file = "cases/linkages/6r-mobile.toml";
+  const Mapped m = solve_text(read(file), file, "auto", 0.1, verify::kSymmetricPiece);
+  CHECK(m.v.maps_proved);
+  CHECK(m.v.closed_curves == 1);
+  CHECK(m.v.open_arcs == 0);
+  CHECK(m.v.certified_roots == 0);
+  CHECK(m.v.unverified == 0);
+  CHECK(m.v.headline.rfind("exactly 0 isolated roots and 1 closed curve", 0) == 0);
 }
 
 TEST_CASE("check rejects a tampered map", "[verify][map][check]") {
