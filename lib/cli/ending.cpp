@@ -24,6 +24,9 @@ std::string go_on(const SolveCommand& cmd, const formulate::LoadedCase& c, const
   const long n = cmd.options.params.max_boxes;
   if (r.stop_reason == "time limit reached" && t > 0)
     return again + "; or search longer: linkbox solve " + c.file + " --time-limit " + number(4 * t);
+  const double cpu = cmd.options.params.cpu_limit;
+  if (r.stop_reason == "CPU time limit reached" && cpu > 0)
+    return again + "; or search longer: linkbox solve " + c.file + " --cpu-limit " + number(4 * cpu);
   if (r.stop_reason == "box limit reached" && n > 0)
     return again + "; or search further: linkbox solve " + c.file + " --max-boxes " + std::to_string(10 * n);
   return again;

@@ -86,6 +86,11 @@ void add_run_flags(CLI::App& cmd, SolveCommand& s) {
   cmd.add_option("--time-limit", o.params.time_limit, "stop the search after SEC seconds, keeping what it proved (default 0: none)")
       ->check(number(0, false))
       ->type_name("SEC");
+  cmd.add_option("--cpu-limit", o.params.cpu_limit,
+                 "stop the search after SEC seconds of the process's CPU time (all threads), keeping what it "
+                 "proved: a limit that a loaded machine does not shorten (default 0: none)")
+      ->check(number(0, false))
+      ->type_name("SEC");
   cmd.add_option("--max-boxes", o.params.max_boxes, "stop the search after N processed boxes (default 0: none)")
       ->check(number(0, false))
       ->type_name("N");

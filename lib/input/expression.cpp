@@ -3,6 +3,7 @@
 #include "interval/rigorous.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -297,12 +298,39 @@ class Parser {
     return Value{Polynomial::variable(static_cast<int>(variables_.size() + k)), true};
   }
 
-  // 1/B for a divisor with variables, as the application its text names.
+  // 1/B for a divisor with variables, as the application its text names. When B = c B',
+  // c > 0 its first coefficient and every coefficient of B' = B / c exact, the unknown is
+  // q = 1/B' (named "c/B"), so 1/(8 (1 + a)) and 1/(1 + a) are one unknown, and 1/B = q / c.
   Value reciprocal(const Value& divisor, size_t divisor_at) {
     const std::string text(trim(text_.substr(divisor_at, pos_ - divisor_at)));
     const bool bare = std::all_of(text.begin(), text.end(), [](char c) { return is_identifier_char(c); }) ||
                       (text.front() == '(' && text.back() == ')');
-    return application(Lifted::reciprocal, divisor.poly, bare ? "1/" + text : "1/(" + text + ")");
+    const std::string over = bare ? "/" + text : "/(" + text + ")";
+    Polynomial normal;
+    const double c = exact_scale(divisor.poly, normal);
+    if (c == 1) return application(Lifted::reciprocal, divisor.poly, "1" + over);
+    const Value q = application(Lifted::reciprocal, normal, shortest(c) + over);
+    return Value{q.poly * (Interval(1.0) / Interval(c)), true};
+  }
+
+  // c, B's first coefficient, when it is positive and B / c has exact coefficients (`normal`);
+  // else 1.
+  static double exact_scale(const Polynomial& b, Polynomial& normal) {
+    const Interval first = b.terms().begin()->second;
+    const double c = first.lower();
+    if (c != first.upper() || !(c > 0) || !std::isfinite(c) || c == 1) return 1;
+    for (auto& [powers, coefficient] : b.terms()) {
+      const double x = coefficient.lower(), r = x / c;
+      if (x != coefficient.upper() || !std::isfinite(r) || std::fma(r, c, -x) != 0) return 1;
+      normal += Polynomial::monomial(powers, Interval(r));
+    }
+    return c;
+  }
+
+  static std::string shortest(double x) {
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
+    return std::string(buffer, end);
   }
 
   static bool is_half_integer(const Value& e) {

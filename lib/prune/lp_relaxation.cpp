@@ -1,6 +1,7 @@
 #include "prune/lp_relaxation.hpp"
 
 #include "prune/lp/lph_relaxation.hpp"
+#include "prune/lp/tighten.hpp"
 
 #include <optional>
 
@@ -99,50 +100,7 @@ Outcome LpRelaxation::contract(Box& box) {
 
   if (system_->primary.empty()) return finish(box, std::move(work));
   solver_->load(lp::build_lph_relaxation(*system_, work));
-  // A primary variable already at its lower (upper) bound in the optimal point of an
-  // earlier LP of this pass cannot be raised (lowered) by its own LP, which is skipped
-  // (Gleixner et al., "Three enhancements for optimization-based bound tightening", 2017).
-  // A bound tightened since may cut that point off, so the skip can forgo a little pruning;
-  // skipping an LP is always sound.
-  std::vector<char> low_reached(work.size(), 0), high_reached(work.size(), 0);
-  std::vector<double> point;
-  auto solved = [&] {
-    ++lps_solved_;
-    if (!solver_->last_point(point)) return;
-    for (int j : system_->primary) {
-      const double tolerance = 1e-9 * (work[j].upper() - work[j].lower());
-      low_reached[j] |= point[j] <= work[j].lower() + tolerance;
-      high_reached[j] |= point[j] >= work[j].upper() - tolerance;
-    }
-  };
-  for (int var : system_->primary) {
-    // Algorithm 2 lines 8-11. Each new bound is fed to the next LPs, as the paper's
-    // in-place update of the box does.
-    // Every bound so far is proved: stopping here is sound, only less tight.
-    if (stop_ && (*stop_)()) break;
-    Interval& range = work[var];
-    if (!low_reached[var]) {
-      const lp::LpBound low = solver_->minimize(var);
-      solved();
-      if (low.status == lp::LpStatus::infeasible) return Outcome::empty;
-      if (low.status == lp::LpStatus::bounded && low.value > range.lower()) {
-        if (low.value > range.upper()) return Outcome::empty;  // rigorous bound beyond the box
-        range = Interval(low.value, range.upper());
-        solver_->set_column_bounds(var, range.lower(), range.upper());
-      }
-    }
-    if (!high_reached[var]) {
-      const lp::LpBound high = solver_->maximize(var);
-      solved();
-      if (high.status == lp::LpStatus::infeasible) return Outcome::empty;
-      if (high.status == lp::LpStatus::bounded && high.value < range.upper()) {
-        if (high.value < range.lower()) return Outcome::empty;
-        range = Interval(range.lower(), high.value);
-        solver_->set_column_bounds(var, range.lower(), range.upper());
-      }
-    }
-  }
-
+  if (!lp::tighten_columns(*solver_, system_->primary, work, lps_solved_, stop_)) return Outcome::empty;
   return finish(box, std::move(work));
 }
 

@@ -39,6 +39,7 @@ json parameters_json(const solve::RunOptions& options, const solve::CaseResult& 
           {"lp", prune::lp::to_string(options.strategy.lp)},
           {"arith", to_string(options.strategy.arith)},
           {"time_limit", p.time_limit},
+          {"cpu_limit", p.cpu_limit},
           {"max_boxes", p.max_boxes},
           {"threads", options.threads},
           // where the settings came from: "flag", "case file", "checkpoint"; absent: default

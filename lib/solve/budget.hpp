@@ -22,11 +22,15 @@ class Budget {
   const std::string& reason() const { return reason_; }
   long boxes_taken() const { return taken_.load(); }
   double elapsed() const;
+  double cpu_elapsed() const;  // the process's CPU seconds since the budget began
 
  private:
   bool stop(const char* why);
+  const char* over_time() const;
   std::chrono::steady_clock::time_point start_;
   double time_limit_;
+  double cpu_start_;
+  double cpu_limit_;
   long max_boxes_;
   const std::atomic<int>* interrupt_;
   std::atomic<long> taken_{0};

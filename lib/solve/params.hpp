@@ -12,6 +12,7 @@ struct Params {
   double rho = 0;  // split when volume(after)/volume(before) > rho; in RunOptions 0: not given (settings_for)
   Order order = Order::depth_first;
   double time_limit = 0;  // seconds; 0 = none
+  double cpu_limit = 0;   // seconds of the process's CPU time (every thread); 0 = none
   long max_boxes = 0;     // processed boxes over the whole run; 0 = none
   // > 0: after a complete search, uncertified solution boxes are narrowed to this width by
   // the same contractors (solve/narrow.hpp), for a curve map that needs narrow pieces.

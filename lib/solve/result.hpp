@@ -58,7 +58,7 @@ struct CaseResult {
   Stats total;
   std::vector<prune::Counters> counters;  // summed over sub-problems
   bool complete = true;
-  std::string stop_reason;  // why incomplete: "time limit reached", "box limit reached", "interrupted"
+  std::string stop_reason;  // why incomplete: "time limit reached", "CPU time limit reached", "box limit reached", "interrupted"
   long pending_boxes = 0;   // unexplored boxes over all sub-problems
   long boxes_taken = 0;     // boxes processed, raced candidates' included: the progress lines' count
   double volume_left = 0;   // unexplored share of the domain, averaged over sub-problems

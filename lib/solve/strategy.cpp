@@ -7,6 +7,7 @@
 #include "prune/links.hpp"
 #include "prune/lp_relaxation.hpp"
 #include "prune/newton_contractor.hpp"
+#include "prune/taylor.hpp"
 #include "prune/trapezoid.hpp"
 #include "solve/pruning.hpp"
 
@@ -58,6 +59,13 @@ std::unique_ptr<Contractor> make_newton(const StrategyOptions& options, const fo
                                                  pruned.links);
 }
 
+std::unique_ptr<Contractor> make_taylor(const StrategyOptions& options, const formulate::SubProblem& sub) {
+  const model::System& pruned = sub.pruned();
+  const auto backend = options.arith != Arith::verified ? prune::lp::LpBackend::float_trusted : options.lp;
+  return std::make_unique<prune::TaylorRelaxation>(pruned.equations, pruned.variables.size(), backend, options.arith,
+                                                   pruned.links);
+}
+
 struct Row {
   ContractorKind kind;
   const char* name;
@@ -71,6 +79,7 @@ constexpr Row kContractors[] = {
     {ContractorKind::hc4, "hc4", make_hc4},
     {ContractorKind::acid, "acid", make_acid},
     {ContractorKind::newton, "newton", make_newton},
+    {ContractorKind::taylor, "taylor", make_taylor},
 };
 
 const Row& row_of(ContractorKind kind) {
@@ -163,7 +172,8 @@ std::vector<Strategy> candidates(const Strategy& strategy, const formulate::SubP
   if (!strategy.is_auto()) return {strategy};
   using K = ContractorKind;
   if (sub.clipping && sub.pruned().is_multi_affine()) return {Strategy({{K::trapezoid}})};
-  return {Strategy({{K::hc4, K::newton}}), Strategy({{K::hc4, K::newton}, {K::lp}})};
+  return {Strategy({{K::hc4, K::newton}}), Strategy({{K::hc4, K::newton}, {K::lp}}),
+          Strategy({{K::hc4, K::newton, K::taylor}})};
 }
 
 Pruning make_pruning(const Strategy& strategy, const StrategyOptions& options, const formulate::SubProblem& sub) {

@@ -11,7 +11,7 @@
 
 namespace linkbox::solve {
 
-enum class ContractorKind { trapezoid, lp, hc4, acid, newton };
+enum class ContractorKind { trapezoid, lp, hc4, acid, newton, taylor };
 
 const char* name_of(ContractorKind kind);
 // The contractors' names, as the help text and the error messages list them: "trapezoid, lp, ...".

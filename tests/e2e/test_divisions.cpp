@@ -82,6 +82,24 @@ TEST_CASE("a root of the cleared equation where the divisor is 0 is never certif
   CHECK(certified_clusters(twice) == 0);
 }
 
+TEST_CASE("divisors equal up to a constant factor are one unknown", "[divisions]") {
+  // 2y + 2 = 2 (y + 1): both quotients are q = 1/(y + 1), and x/(2y + 2) is x q / 2.
+  const auto run = solve_text(polynomial_case(R"~({ name = "x", domain = [0, 4] }, { name = "y", domain = [0, 4] })~",
+                                              R"~("x/(2*y + 2) = 1/2", "3/(y + 1) = 1")~"));
+  const auto& sys = run.c.formulation->subproblem(0).system;
+  CHECK(sys.variables.size() == 3);  // x, y and one quotient
+  CHECK(run.v.exact);
+  REQUIRE(run.roots.size() == 1);
+  CHECK(holding(run.roots, {3.0, 2.0}) == 1);
+  // 3 + y is not 3 (1 + y/3) with an exact 1/3: its own unknown. The root: (3 + y)(1 + y) = 8.
+  const auto inexact = solve_text(polynomial_case(R"~({ name = "y", domain = [0, 4] })~",
+                                                  R"~("1/(3 + y) - 1/(1 + y) + 1/4 = 0")~"));
+  CHECK(inexact.c.formulation->subproblem(0).system.variables.size() == 3);
+  CHECK(inexact.v.exact);
+  REQUIRE(inexact.roots.size() == 1);
+  CHECK(holding(inexact.roots, {1.0}) == 1);
+}
+
 TEST_CASE("x^2/(x - 1) = 5: both roots, on either side of the pole", "[divisions]") {
   // x^2 - 5x + 5 = 0: x = (5 -+ sqrt 5)/2, 1.38 and 3.62, with the pole x = 1 between 0 and 4.
   const auto run = solve_text(polynomial_case(R"~({ name = "x", domain = [0, 4] })~", R"~("x^2/(x - 1) = 5")~"));

@@ -102,10 +102,13 @@ TEST_CASE("a division by an expression with variables is q B = 1", "[links]") {
 
 TEST_CASE("a small Bratu system: every certified root satisfies the equations in MPFI", "[links]") {
   // h exp(x_i) + x_(i-1) - 2 x_i + x_(i+1) = 0, i = 1..3, x_0 = x_4 = 0 (IbexSolve's Bratu
-  // with three points).
+  // with three points). The Taylor relaxation reads the links' rows too.
+  const std::string prune = GENERATE(as<std::string>{}, "hc4,newton", "hc4,newton,taylor");
+  INFO(prune);
   const auto run = solve_text(polynomial_case(
       R"~({ name = "x1", domain = [-10, 20] }, { name = "x2", domain = [-10, 20] }, { name = "x3", domain = [-10, 20] })~",
-      R"~("1/16*exp(x1) - 2*x1 + x2", "1/16*exp(x2) + x1 - 2*x2 + x3", "1/16*exp(x3) + x2 - 2*x3")~"));
+      R"~("1/16*exp(x1) - 2*x1 + x2", "1/16*exp(x2) + x1 - 2*x2 + x3", "1/16*exp(x3) + x2 - 2*x3")~"),
+      prune);
   CHECK(run.v.exact);
   REQUIRE(run.roots.size() >= 1);
   const Interval h = Interval(1.0) / Interval(16.0);

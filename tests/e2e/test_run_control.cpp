@@ -352,6 +352,30 @@ TEST_CASE("a budget stops on an interrupt and reads the clock between LPs", "[ru
   CHECK_FALSE(budget.take_box());
 }
 
+TEST_CASE("a CPU-time limit counts the process's CPU time, not the wall clock", "[run_control]") {
+  solve::Params p;
+  p.cpu_limit = 0.05;
+  solve::Budget budget(p);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // wall time, next to no CPU
+  CHECK_FALSE(budget.stop_now());
+  volatile double x = 0;
+  while (budget.cpu_elapsed() <= p.cpu_limit) x = x + 1;
+  CHECK(budget.stop_now());
+  CHECK(budget.reason() == "CPU time limit reached");
+  CHECK_FALSE(budget.take_box());
+}
+
+TEST_CASE("a run stopped by its CPU-time limit is incomplete and says how to go on", "[run_control][cli]") {
+  const std::string out = tmp("cpu-limit.json");
+  const auto r = run("solve " + src("cases/benchmarks/eco10.toml") + " --cpu-limit 0.3 --json " + out);
+  REQUIRE(r.code == 5);
+  const auto j = read(out);
+  CHECK(j["stop_reason"] == "CPU time limit reached");
+  CHECK(j["parameters"]["cpu_limit"] == 0.3);
+  CHECK(r.out.find("INCOMPLETE (CPU time limit reached)") != std::string::npos);
+  CHECK(r.out.find("linkbox resume " + out) != std::string::npos);  // the run kept a checkpoint beside its JSON
+}
+
 TEST_CASE("a root whose Jacobian is singular is named so, with counts that cannot read as variables", "[run_control][cli]") {
   // x^2 + y^2 = 0 and x^2 = y^3: the one real root is the origin, where every term has degree
   // >= 2, so the Jacobian vanishes there.

@@ -40,11 +40,11 @@ TEST_CASE("strategies agree on the certified roots of the bundled cases", "[stra
       {"cases/spherical/wrist.toml", {"auto", "trapezoid", "trapezoid,newton", "hc4,newton", "lp", "hc4,lp"}},
       {"cases/spherical/agile-eye.toml", {"auto", "trapezoid", "trapezoid,newton", "trapezoid,lp"}},
       {"cases/polynomial/circle-line.toml", {"auto", "hc4", "newton", "lp", "hc4,lp"}},
-      {"cases/polynomial/planted-cubic.toml", {"auto", "hc4", "newton", "hc4,lp", "acid,newton"}},
-      {"cases/benchmarks/kin1.toml", {"auto", "hc4,newton", "hc4,newton/lp", "hc4,acid,newton"}},
+      {"cases/polynomial/planted-cubic.toml", {"auto", "hc4", "newton", "hc4,lp", "acid,newton", "taylor,newton"}},
+      {"cases/benchmarks/kin1.toml", {"auto", "hc4,newton", "hc4,newton/lp", "hc4,acid,newton", "hc4,newton,taylor"}},
       {"cases/benchmarks/cyclohexan3d.toml", {"auto", "hc4,newton", "hc4,lp", "hc4,acid,newton"}},
       {"cases/benchmarks/caprasse.toml", {"auto", "hc4,acid,newton"}},
-      {"cases/linkages/6r-rigid.toml", {"auto", "hc4/newton", "hc4,acid,newton"}},
+      {"cases/linkages/6r-rigid.toml", {"auto", "hc4/newton", "hc4,acid,newton", "hc4,newton/taylor"}},
   };
   for (auto& [file, strategies] : runs) {
     formulate::LoadedCase c = formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/" + file);
@@ -95,7 +95,7 @@ TEST_CASE("a race on several threads picks the winner and boxes of the one-threa
     const auto one = solve::solve_case(*c.formulation, o);
     REQUIRE(one.subproblems.size() == 1);
     const auto& a = one.subproblems[0];
-    REQUIRE(a.race.size() == 2);  // "auto" raced two candidates
+    REQUIRE(a.race.size() == 3);  // "auto" raced three candidates
     for (int threads : {2, 3, 4}) {
       INFO(threads << " threads");
       o.threads = threads;
@@ -224,7 +224,7 @@ TEST_CASE("a race whose leader lends boxes ends as the one-process race", "[stra
     ThreadLending lending(*c.formulation, o, budget);
     REQUIRE(solve::run_subproblem(*c.formulation, 0, o, budget, &lending, lent, piece));
     CHECK(lending.lent > 0);
-    REQUIRE(one.race.size() == 2);
+    REQUIRE(one.race.size() == 3);
     CHECK(one.race == lent.race);
     CHECK(one.strategy == lent.strategy);
     CHECK(one.stats.processed == lent.stats.processed);

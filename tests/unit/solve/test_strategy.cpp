@@ -43,7 +43,7 @@ TEST_CASE("a bad strategy is refused with the names that are known", "[strategie
   } catch (const std::invalid_argument& e) {
     CHECK(std::string(e.what()) == "unknown pruning strategy 'hc5' (known: auto, " + solve::contractor_names() + ")");
   }
-  CHECK(solve::contractor_names() == "trapezoid, lp, hc4, acid, newton");
+  CHECK(solve::contractor_names() == "trapezoid, lp, hc4, acid, newton, taylor");
   CHECK_THROWS_WITH(Strategy::parse("/"), "no pruning strategy given");
   CHECK_THROWS_WITH(Strategy::parse(""), "no pruning strategy given");
   CHECK_THROWS_AS(Strategy::parse("auto,lp"), std::invalid_argument);

@@ -1,0 +1,25 @@
+#pragma once
+// The bound-tightening loop of an LP contractor (iterated-LP paper, Algorithm 2 lines 8-11):
+// each of `columns` minimised and maximised in turn over the loaded LP, each new bound fed to
+// the next LPs as the paper's in-place update of the box does. Only the backend's rigorous
+// bounds move `box` (lp_solver.hpp).
+//
+// A column already at its lower (upper) bound in the optimal point of an earlier LP of this
+// pass cannot be raised (lowered) by its own LP, which is skipped (Gleixner et al., "Three
+// enhancements for optimization-based bound tightening", 2017). A bound tightened since may
+// cut that point off, so the skip can forgo a little pruning; skipping an LP is always sound.
+#include "interval/box.hpp"
+#include "prune/lp/lp_solver.hpp"
+
+#include <functional>
+#include <span>
+
+namespace linkbox::prune::lp {
+
+// False when the box is proved empty. `stop` (may be null) is asked before each column:
+// every bound so far is proved, so stopping there is sound, only less tight. `lps_solved`
+// counts the LPs.
+bool tighten_columns(LpSolver& solver, std::span<const int> columns, Box& box, long& lps_solved,
+                     const std::function<bool()>* stop);
+
+}  // namespace linkbox::prune::lp
