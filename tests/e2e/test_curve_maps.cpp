@@ -147,6 +147,24 @@ TEST_CASE("the mobile 6R, narrowed, maps to one proved closed curve", "[verify][
   CHECK(m.v.certified_roots == 0);
   CHECK(m.v.unverified == 0);
   CHECK(m.v.headline.rfind("exactly 0 isolated roots and 1 closed curve", 0) == 0);
+  // check re-proves the map and the clusters emptied through the symmetry, and no more.
+  const auto failures = verify::check_certificates(m.j, *m.c.formulation).failures;
+  for (auto& why : failures) UNSCOPED_INFO(why);
+  CHECK(failures.empty());
+  auto rejected = [&](auto&& edit) {
+    nlohmann::json j = m.j;
+    edit(j);
+    return !verify::check_certificates(j, *m.c.formulation).failures.empty();
+  };
+  CHECK(rejected([](auto& j) { j["verification"]["map"]["closed_curves"] = 2; }));
+  CHECK(rejected([](auto& j) {
+    for (auto& c : j["clusters"])
+      if (c.contains("map") && !c["map"]["arcs"].empty()) {
+        for (auto& side : c["map"]["arcs"][0]["box"])  // the arc's box moved by 0.01
+          for (auto& end : side) end = end.template get<double>() + 0.01;
+        return;
+      }
+  }));
 }
 
 TEST_CASE("check rejects a tampered map", "[verify][map][check]") {
