@@ -3,6 +3,7 @@
 #include "verify/check_proofs.hpp"
 
 #include "verify/cluster.hpp"
+#include "verify/symmetric_map.hpp"
 #include "verify/curve.hpp"
 #include "verify/curve_map.hpp"
 #include "verify/headline.hpp"
@@ -122,6 +123,25 @@ void map_curve(const formulate::Formulation& f, const std::vector<Box>& member, 
   c.reason = c.map->statement;
 }
 
+// A cluster of a symmetric six-joint loop that no square subsystem maps (its closure is
+// redundant along curves): the map through the loop's symmetry, when one can be stated.
+void map_symmetric_loop(const formulate::Formulation& f, const std::vector<Box>& member, ClusterReport& c) {
+  const auto loop = SymmetricLoop::of(f);
+  if (!loop) return;
+  for (const Box& m : member)
+    if (max_width(m) > kSymmetricMember) return;
+  auto map = map_symmetric(*loop, member);
+  if (!map) return;
+  if (map->arcs.empty()) {
+    c.status = ClusterStatus::empty;
+    c.reason = "proved to hold no root: every piece excluded through the loop's symmetry";
+    return;
+  }
+  c.map = std::move(map);
+  c.status = ClusterStatus::curve;
+  c.reason = c.map->statement;
+}
+
 // Proved maps of two clusters whose arcs may meet could count one curve twice: both are
 // then stated as not proved.
 void separate_maps(const formulate::Formulation& f, VerifyReport& report) {
@@ -211,6 +231,7 @@ ClusterReport verify_cluster(const formulate::Formulation& f, const ClusterTask&
   if (!start.empty()) certify_isolated(f, f.natural(c.chart), start, member, periodic, c, options.newton);
   const bool curve_like = classify_curve(f, member, !start.empty(), c, options.newton);
   if (curve_like) map_curve(f, member, !start.empty(), c, options.newton);
+  if (!c.map && c.status != ClusterStatus::certified) map_symmetric_loop(f, member, c);
   if (!start.empty()) classify_inequalities(f.natural(c.chart), start, c);
   return c;
 }

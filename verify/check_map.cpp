@@ -2,6 +2,7 @@
 
 #include "verify/curve_map_json.hpp"
 #include "verify/subsystem.hpp"
+#include "verify/symmetric_map.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -83,7 +84,44 @@ std::vector<std::pair<std::vector<size_t>, bool>> shape(const std::vector<MapCom
   return s;
 }
 
+bool same_arcs(const CurveMap& a, const CurveMap& b) {
+  if (a.arcs.size() != b.arcs.size()) return false;
+  for (size_t i = 0; i < a.arcs.size(); ++i) {
+    const MapArc &x = a.arcs[i], &y = b.arcs[i];
+    if (key_of(x.member, x.piece) != key_of(y.member, y.piece) || key_of(0, x.arc.box) != key_of(0, y.arc.box) ||
+        x.arc.parameter != y.arc.parameter)
+      return false;
+  }
+  return true;
+}
+
+// A map through the loop's symmetry (verify/symmetric_map.hpp) is recomputed whole from the
+// members: every arc, exclusion and join proved anew. The file's arcs must be those.
+void check_symmetric(const formulate::Formulation& f, const std::vector<Box>& members, CurveMap& m, MapCheck& out) {
+  const auto loop = SymmetricLoop::of(f);
+  const auto again = loop ? map_symmetric(*loop, members) : std::nullopt;
+  if (!again || !same_arcs(*again, m)) {
+    out.failures.push_back("its arcs are not those that the loop's symmetry proves");
+    return;
+  }
+  out.arcs = static_cast<int>(again->arcs.size());
+  if (shape(again->components) != shape(m.components) || again->proved != m.proved)
+    out.failures.push_back("the map's components or its proof are not what its arcs give");
+  out.proved = out.failures.empty() && again->proved;
+  for (auto& c : again->components) ++(c.closed ? out.closed : out.open);
+  out.map = *again;
+}
+
 }  // namespace
+
+bool symmetric_empty(const formulate::Formulation& f, const std::vector<Box>& members) {
+  const auto loop = SymmetricLoop::of(f);
+  if (!loop || members.empty()) return false;
+  for (const Box& m : members)
+    if (max_width(m) > kSymmetricMember) return false;
+  const auto map = map_symmetric(*loop, members);
+  return map && map->arcs.empty() && map->unresolved.empty();
+}
 
 MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, const std::vector<Box>& members,
                    const std::function<bool(std::uint64_t)>& chart_exists) {
@@ -102,6 +140,10 @@ MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, con
                          std::all_of(m.charts.begin(), m.charts.end(), chart_exists);
   if (!sizes_fit || members.empty()) {
     out.failures.push_back("the map's members or charts do not match the cluster's");
+    return out;
+  }
+  if (m.equations.empty()) {  // the symmetric loop's maps speak of no natural equations
+    check_symmetric(f, members, m, out);
     return out;
   }
   const auto& sys = f.natural(m.charts[0]);

@@ -27,4 +27,7 @@ struct MapCheck {
 MapCheck check_map(const nlohmann::json& map, const formulate::Formulation& f, const std::vector<Box>& members,
                    const std::function<bool(std::uint64_t)>& chart_exists);
 
+// Whether the members provably hold no solution through a symmetric loop's map (recomputed).
+bool symmetric_empty(const formulate::Formulation& f, const std::vector<Box>& members);
+
 }  // namespace linkbox::verify

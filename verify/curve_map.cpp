@@ -49,7 +49,9 @@ std::string plural(size_t k, const char* one, const char* many) {
   return std::to_string(k) + " " + (k == 1 ? one : many);
 }
 
-void state(CurveMap& map) {
+}  // namespace
+
+void state_map(CurveMap& map) {
   size_t closed = 0;
   for (auto& c : map.components) closed += c.closed;
   const size_t open = map.components.size() - closed;
@@ -71,6 +73,8 @@ void state(CurveMap& map) {
   if (map.loose_ends) why += std::string(why.empty() ? "" : "; ") + plural(map.loose_ends, "arc end", "arc ends") + " not continued";
   map.statement = "arcs joined into " + plural(map.components.size(), "branch", "branches") + ", not proved: " + why;
 }
+
+namespace {
 
 // Members tried whole before a cluster is mapped, and how many must hold an arc: a cluster
 // whose boxes do not follow a regular curve of the kept equations (a singular isolated root,
@@ -182,7 +186,7 @@ void join_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
   }
   map.proved = map.unresolved.empty() && map.undecided_ends == 0 && map.loose_ends == 0 &&
                count > 0;
-  state(map);
+  state_map(map);
 }
 
 bool maps_apart(const formulate::Formulation& f, const CurveMap& a, const CurveMap& b) {

@@ -25,6 +25,9 @@ struct MapArc {
   std::uint64_t chart = 0;  // the natural unknowns the arc is in
   Box piece;                // the part of the member's natural box the arc covers
   newton::Arc arc;
+  // A symmetric loop's arc (verify/symmetric_map.hpp): the rows of D and the preconditioner
+  // of its uniqueness test in v (rows[0] < 0: an arc of the kept equations).
+  Eigen::MatrixXd v_preconditioner;
 };
 
 struct MapComponent {
@@ -34,6 +37,9 @@ struct MapComponent {
 };
 
 struct CurveMap {
+  // What the arcs are arcs of: "" for n - 1 of the natural equations; "symmetric loop" for a
+  // six-joint loop's reduced system (verify/symmetric_map.hpp), whose arcs are in u.
+  std::string argument;
   std::vector<std::uint64_t> charts;  // per member: the chart its pieces are in
   std::vector<int> equations;  // natural equations whose zero set the arcs are (all, n - 1)
   std::vector<MapArc> arcs;
@@ -83,6 +89,9 @@ std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::
 // Joins `map.arcs` into components and sets undecided_ends, loose_ends, proved and the
 // statement. `members` are the cluster's boxes in output variables.
 void join_arcs(const formulate::Formulation& f, const std::vector<Box>& members, CurveMap& map);
+
+// Sets map.statement from its components, proved, unresolved pieces and ends.
+void state_map(CurveMap& map);
 
 // Whether no arc of `a` can share a point with an arc of `b` (maps of two clusters): by the
 // argument above, a shared point shows as an end of one meeting the box of the other. Two

@@ -1,5 +1,6 @@
 #include "solve/subproblem.hpp"
 
+#include "solve/narrow.hpp"
 #include "solve/refine.hpp"
 
 namespace linkbox::solve {
@@ -26,6 +27,7 @@ void finish(const formulate::SubProblem& sub, const Params& params, Budget& budg
   // Only Newton tells the certifier where to look; without it a refinement cannot certify.
   if (r.complete && ran.pruning.strategy.uses(ContractorKind::newton))
     refine(r, work, sub, params, budget, *ran.pruning.sequence, ran.certifier, bisector);
+  if (r.complete) narrow(r, sub, params, budget, *ran.pruning.sequence, bisector);
   s.solutions = std::move(r.solutions);
   s.certified = std::move(r.certified);
   for (auto& b : s.solutions)

@@ -9,6 +9,7 @@
 #include "solve/strategy.hpp"
 #include "verify/certify_case.hpp"
 #include "verify/check.hpp"
+#include "verify/symmetric_map.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -27,11 +28,13 @@ struct Mapped {
   nlohmann::json j;
 };
 
-Mapped solve_text(const std::string& text, const std::string& file, const std::string& prune, double sigma) {
+Mapped solve_text(const std::string& text, const std::string& file, const std::string& prune, double sigma,
+                  double narrow = 0) {
   Mapped m{formulate::load_case_text(text, file), {}, {}};
   solve::RunOptions o;
   o.progress = false;
   o.params.sigma = sigma;
+  o.params.narrow = narrow;
   o.strategy.prune = solve::Strategy::parse(prune);
   const auto r = solve::solve_case(*m.c.formulation, o);
   REQUIRE(r.complete);
@@ -131,6 +134,37 @@ TEST_CASE("a nearly mobile 6R loop is never a proved curve", "[verify][map]") {
   CHECK(proved_maps(m.v) == 0);
   CHECK_FALSE(m.v.maps_proved);
   CHECK(m.v.headline.rfind("exactly", 0) != 0);
+}
+
+TEST_CASE("the mobile 6R, narrowed, maps to one proved closed curve", "[verify][map][slow]") {
+  // Every solution has theta_i = theta_{i+3}; the loop's symmetry proves the map once the
+  // search's contractors narrow its boxes.
+  const std::string file = "cases/linkages/6r-mobile.toml";
+  const Mapped m = solve_text(read(file), file, "auto", 0.1, verify::kSymmetricPiece);
+  CHECK(m.v.maps_proved);
+  CHECK(m.v.closed_curves == 1);
+  CHECK(m.v.open_arcs == 0);
+  CHECK(m.v.certified_roots == 0);
+  CHECK(m.v.unverified == 0);
+  CHECK(m.v.headline.rfind("exactly 0 isolated roots and 1 closed curve", 0) == 0);
+  // check re-proves the map and the clusters emptied through the symmetry, and no more.
+  const auto failures = verify::check_certificates(m.j, *m.c.formulation).failures;
+  for (auto& why : failures) UNSCOPED_INFO(why);
+  CHECK(failures.empty());
+  auto rejected = [&](auto&& edit) {
+    nlohmann::json j = m.j;
+    edit(j);
+    return !verify::check_certificates(j, *m.c.formulation).failures.empty();
+  };
+  CHECK(rejected([](auto& j) { j["verification"]["map"]["closed_curves"] = 2; }));
+  CHECK(rejected([](auto& j) {
+    for (auto& c : j["clusters"])
+      if (c.contains("map") && !c["map"]["arcs"].empty()) {
+        for (auto& side : c["map"]["arcs"][0]["box"])  // the arc's box moved by 0.01
+          for (auto& end : side) end = end.template get<double>() + 0.01;
+        return;
+      }
+  }));
 }
 
 TEST_CASE("check rejects a tampered map", "[verify][map][check]") {

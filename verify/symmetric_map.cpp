@@ -1,0 +1,303 @@
+#include "verify/symmetric_map.hpp"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include <cmath>
+#include <map>
+#include <numeric>
+
+namespace linkbox::verify {
+
+using newton::IMatrix;
+using newton::IVector;
+
+namespace {
+
+Box u_of(const Box& uv) { return Box(uv.begin(), uv.begin() + 3); }
+
+Box with_v(const Box& u, const Box& uv) {
+  Box r = u;
+  r.insert(r.end(), uv.begin() + 3, uv.end());
+  return r;
+}
+
+std::array<int, 2> others(int p) { return p == 0 ? std::array{1, 2} : p == 1 ? std::array{0, 2} : std::array{0, 1}; }
+
+bool finite(const Box& b) {
+  for (auto& x : b)
+    if (!is_finite(x)) return false;
+  return true;
+}
+
+Box point(const Eigen::Vector3d& x) { return {Interval(x(0)), Interval(x(1)), Interval(x(2))}; }
+
+// The parametric Krawczyk image of Y (the sides other than p) over u, in mean-value form in
+// the parameter too: K = y^ - C R(t^, y^) - C R_t(U) ([t] - t^) + (I - C R_y(U)) (Y - y^).
+// Returns the image; `interior` when strictly inside Y.
+Box reduced_image(const SymmetricLoop& loop, const Box& u, int p, const Eigen::MatrixXd& c, bool& interior) {
+  const auto y = others(p);
+  const IMatrix j = loop.r_jacobian(u);
+  Box mid = u;
+  for (int i = 0; i < 3; ++i) mid[i] = Interval(median(u[i]));
+  const IVector r = loop.r_values(mid);
+  IVector rhs(2), offset(2);
+  IMatrix jy(2, 2);
+  for (int i = 0; i < 2; ++i) {
+    rhs(i) = r(i) + j(i, p) * (u[p] - mid[p]);
+    offset(i) = u[y[i]] - mid[y[i]];
+    for (int k = 0; k < 2; ++k) jy(i, k) = j(i, y[k]);
+  }
+  const IVector k = -newton::multiply(c, rhs) + newton::multiply(newton::identity_minus(c, jy), offset);
+  Box image(2);
+  interior = true;
+  for (int i = 0; i < 2; ++i) {
+    image[i] = mid[y[i]] + k(i);
+    interior = interior && is_finite(image[i]) && u[y[i]].lower() < image[i].lower() &&
+               image[i].upper() < u[y[i]].upper();
+  }
+  return image;
+}
+
+// The arc's point on the face t = value, tightened by Krawczyk steps within the arc's box.
+Box end_at(const SymmetricLoop& loop, const Box& u, int p, double value, const Eigen::MatrixXd& c) {
+  Box e = u;
+  e[p] = Interval(value);
+  const auto y = others(p);
+  for (int step = 0; step < 6; ++step) {
+    bool interior = false;
+    const Box image = reduced_image(loop, e, p, c, interior);
+    for (int i = 0; i < 2; ++i)
+      if (!intersect(e[y[i]], image[i], e[y[i]])) return e;
+  }
+  return e;
+}
+
+// Float Newton on R with side p held at its midpoint, from x.
+std::optional<Eigen::Vector3d> newton_point(const SymmetricLoop& loop, Eigen::Vector3d x, int p) {
+  const auto y = others(p);
+  for (int it = 0; it < 12; ++it) {
+    const Eigen::VectorXd r = newton::midpoint(loop.r_values(point(x)));
+    const Eigen::MatrixXd j = newton::midpoint(loop.r_jacobian(point(x)));
+    Eigen::Matrix2d jy;
+    jy << j(0, y[0]), j(0, y[1]), j(1, y[0]), j(1, y[1]);
+    const Eigen::Vector2d d = jy.partialPivLu().solve(Eigen::Vector2d(r(0), r(1)));
+    if (!d.allFinite()) return std::nullopt;
+    x(y[0]) -= d(0);
+    x(y[1]) -= d(1);
+    if (d.lpNorm<Eigen::Infinity>() < 1e-15) break;
+  }
+  return x;
+}
+
+// Whether T(u) = I is excluded on u: the quaternion's scalar part stays inside (-1, 1).
+bool not_identity(const SymmetricLoop& loop, const Box& u) {
+  const Interval q = loop.q0(u);
+  return -1 < q.lower() && q.upper() < 1;
+}
+
+// Whether the arc `a` (certified) misses the U of a piece inside its box, or the member (in
+// output variables) the piece was cut from: over each slice of the piece's parameter range,
+// every solution in the arc's box lies in the slice's Krawczyk image at v = 0, and each image
+// misses the piece's other two sides or, carried to the outputs, the member.
+bool arc_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u, const Box& member) {
+  const int p = a.parameter;
+  const auto y = others(p);
+  Interval range;
+  if (!intersect(u[p], a.box[p], range)) return true;
+  constexpr int kSlices = 8;
+  const double step = width_up(range) / kSlices;
+  for (int i = 0; i < kSlices; ++i) {
+    Box slice = a.box;
+    const double lo = range.lower() + i * step;
+    slice[p] = Interval(lo, i + 1 == kSlices ? range.upper() : lo + step);
+    // Krawczyk steps: the slice's solutions stay in each image, so the slice shrinks to it.
+    bool none = false;
+    for (int step = 0; step < 4 && !none; ++step) {
+      bool interior = false;
+      const Box image = reduced_image(loop, slice, p, Eigen::MatrixXd(a.preconditioner), interior);
+      for (int k = 0; k < 2 && !none; ++k) {
+        if (!is_finite(image[k])) return false;
+        none = !intersect(slice[y[k]], image[k], slice[y[k]]);
+      }
+    }
+    if (none) continue;
+    const auto meets = [](const Interval& x, const Interval& z) { return x.lower() <= z.upper() && z.lower() <= x.upper(); };
+    if (!meets(slice[y[0]], u[y[0]]) || !meets(slice[y[1]], u[y[1]])) continue;
+    Box on_arc(6, Interval(0.0));  // the slice's solutions: (t, y) at v = 0
+    for (int k = 0; k < 3; ++k) on_arc[k] = slice[k];
+    if (overlaps(loop.to_output(on_arc), member)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+newton::Arc symmetric_arc_from(const SymmetricLoop& loop, const Box& u, int parameter, const Eigen::MatrixXd& c,
+                               const Box& uv_piece, const SymmetricLoop::RowChoice& rows) {
+  newton::Arc a;
+  a.parameter = parameter;
+  a.box = u;
+  a.preconditioner = c;
+  if (u.size() != 3 || uv_piece.size() != 6 || parameter < 0 || parameter > 2 || c.rows() != 2 || c.cols() != 2 ||
+      !c.allFinite() || !finite(u) || !finite(uv_piece))
+    return a;
+  bool interior = false;
+  const Box image = reduced_image(loop, u, parameter, c, interior);
+  if (!interior || !not_identity(loop, u) || !loop.on_subspace(with_v(u, uv_piece), rows)) return a;
+  a.certified = true;
+  a.image = u;
+  const auto y = others(parameter);
+  for (int i = 0; i < 2; ++i) a.image[y[i]] = image[i];
+  a.ends[0] = end_at(loop, u, parameter, u[parameter].lower(), c);
+  a.ends[1] = end_at(loop, u, parameter, u[parameter].upper(), c);
+  return a;
+}
+
+bool symmetric_piece_empty(const SymmetricLoop& loop, const Box& uv) {
+  const IVector d = loop.d_values(uv);
+  for (int i = 0; i < d.size(); ++i)
+    if (!zero_in(d(i))) return true;
+  const auto rows = loop.choose_rows(uv);
+  if (!rows) return false;
+  if (loop.excluded(uv, *rows)) return true;
+  if (!loop.on_subspace(uv, *rows)) return false;
+  for (int i = 3; i < 6; ++i)
+    if (!zero_in(uv[i])) return true;
+  const Box u = u_of(uv);
+  const IVector r = loop.r_values(u);
+  return (!zero_in(r(0)) || !zero_in(r(1))) && not_identity(loop, u);
+}
+
+namespace {
+
+// Tries an arc through the piece: parameters in order of the curve's speed across the piece,
+// Y grown from the piece until the Krawczyk image falls inside it.
+std::optional<MapArc> certify_symmetric(const SymmetricLoop& loop, const Box& uv, size_t member) {
+  for (int i = 3; i < 6; ++i)
+    if (!zero_in(uv[i])) return std::nullopt;
+  const Box u = u_of(uv);
+  Eigen::Vector3d x(median(u[0]), median(u[1]), median(u[2]));
+  const auto rows = loop.choose_rows(uv);
+  if (!rows) return std::nullopt;
+  const Eigen::MatrixXd j0 = newton::midpoint(loop.r_jacobian(point(x)));
+  const Eigen::Vector3d tangent = Eigen::Vector3d(j0.row(0)).cross(Eigen::Vector3d(j0.row(1)));
+  std::array<int, 3> order{0, 1, 2};
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::fabs(tangent(a)) / width_up(u[a]) > std::fabs(tangent(b)) / width_up(u[b]);
+  });
+  for (int p : order) {
+    const auto at = newton_point(loop, x, p);
+    if (!at) continue;
+    const auto y = others(p);
+    const Eigen::MatrixXd j = newton::midpoint(loop.r_jacobian(point(*at)));
+    Eigen::Matrix2d jy;
+    jy << j(0, y[0]), j(0, y[1]), j(1, y[0]), j(1, y[1]);
+    const Eigen::FullPivLU<Eigen::Matrix2d> lu(jy);
+    if (!lu.isInvertible()) continue;
+    const Eigen::MatrixXd c = lu.inverse();
+    Box box = u;
+    const double overlap = std::ldexp(width_up(u[p]), -10);
+    box[p] = u[p] + Interval(-overlap, overlap);
+    for (int i = 0; i < 2; ++i) box[y[i]] = hull(box[y[i]], Interval((*at)(y[i])));
+    for (int round = 0; round < 6; ++round) {
+      for (int i = 0; i < 2; ++i) {
+        const double r = 0.1 * width_up(box[y[i]]) + 1e-12;
+        box[y[i]] = box[y[i]] + Interval(-r, r);
+      }
+      if (max_width(box) > 4 * max_width(u)) break;
+      bool interior = false;
+      const Box image = reduced_image(loop, box, p, c, interior);
+      if (!interior) {
+        for (int i = 0; i < 2; ++i) box[y[i]] = hull(image[i], u[y[i]]);
+        if (!finite(box)) break;
+        continue;
+      }
+      newton::Arc a = symmetric_arc_from(loop, box, p, c, uv, *rows);
+      if (!a.certified) break;
+      MapArc m;
+      m.member = member;
+      m.piece = uv;
+      m.arc = std::move(a);
+      m.v_preconditioner = rows->c;
+      return m;
+    }
+  }
+  return std::nullopt;
+}
+
+size_t find(std::vector<size_t>& parent, size_t a) {
+  while (parent[a] != a) a = parent[a] = parent[parent[a]];
+  return a;
+}
+
+// Joins arcs whose end lies in another's box; angles are unbounded, so every end must be.
+void join(const std::vector<Box>& members, CurveMap& map) {
+  const size_t count = map.arcs.size();
+  std::vector<size_t> parent(count);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (size_t a = 0; a < count; ++a)
+    for (int side = 0; side < 2; ++side) {
+      const Box& end = map.arcs[a].arc.ends[side];
+      bool continued = false;
+      for (size_t c = 0; c < count; ++c) {
+        if (c == a || !overlaps(end, map.arcs[c].arc.box)) continue;
+        if (contains(map.arcs[c].arc.box, end)) {
+          continued = true;
+          parent[find(parent, a)] = find(parent, c);
+        } else if (overlaps(end, map.arcs[c].arc.image)) {
+          ++map.undecided_ends;
+        }
+      }
+      if (!continued) ++map.loose_ends;
+    }
+  std::map<size_t, size_t> component_of;
+  for (size_t a = 0; a < count; ++a) {
+    auto [it, fresh] = component_of.emplace(find(parent, a), map.components.size());
+    if (fresh) map.components.push_back({{}, true, {}});
+    MapComponent& c = map.components[it->second];
+    c.arcs.push_back(a);
+    const Box& m = members.at(map.arcs[a].member);
+    c.extent = c.extent.empty() ? m : hull(c.extent, m);
+  }
+  map.proved = map.unresolved.empty() && map.undecided_ends == 0 && map.loose_ends == 0 && count > 0;
+  state_map(map);
+}
+
+}  // namespace
+
+std::optional<CurveMap> map_symmetric(const SymmetricLoop& loop, const std::vector<Box>& members) {
+  CurveMap map;
+  map.argument = "symmetric loop";
+  map.charts.assign(members.size(), 0);
+  size_t unresolved_members = 0;
+  for (size_t k = 0; k < members.size(); ++k) {
+    bool unresolved = false;
+    walk_symmetric(
+        loop.to_uv(members[k]),
+        [&](const Box& piece) {
+          auto a = certify_symmetric(loop, piece, k);
+          if (!a) return false;
+          // The arc's box holds the piece's U, and every solution in it lies on the arc: a
+          // piece whose U the arc misses holds none.
+          if (!arc_misses(loop, a->arc, u_of(piece), members[k])) map.arcs.push_back(std::move(*a));
+          return true;
+        },
+        // (u, v) pieces cover more than the member: what lies outside it needs no proof.
+        [&](const Box& piece) {
+          return !overlaps(loop.to_output(piece), members[k]) || symmetric_piece_empty(loop, piece);
+        },
+        [&](const Box& piece, PieceKind kind) {
+          if (kind != PieceKind::unresolved) return;
+          map.unresolved.emplace_back(k, piece);
+          unresolved = true;
+        });
+    unresolved_members += unresolved;
+    if (k + 1 >= 8 && 2 * unresolved_members > k + 1) return std::nullopt;
+  }
+  if (map.arcs.empty()) return map.unresolved.empty() ? std::optional(map) : std::nullopt;
+  join(members, map);
+  return map;
+}
+
+}  // namespace linkbox::verify
