@@ -1,6 +1,7 @@
 #include "verify/symmetric_loop.hpp"
 
 #include "formulate/linkage.hpp"
+#include "interval/fast_trig.hpp"
 #include "interval/rigorous.hpp"
 
 #include <Eigen/LU>
@@ -17,20 +18,24 @@ namespace {
 
 bool same(const Interval& a, const Interval& b) { return a.lower() == b.lower() && a.upper() == b.upper(); }
 
-using M44 = std::array<std::array<Interval, 4>, 4>;
+using F = FastInterval;
+using M44 = std::array<std::array<F, 4>, 4>;
+
+F fast(const Interval& x) { return F(x.lower(), x.upper()); }
+Interval safe(const F& x) { return Interval(x.lower(), x.upper()); }
 
 M44 times(const M44& x, const M44& y) {
   M44 r;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
-      Interval s(0.0);
+      F s(0.0);
       for (int k = 0; k < 4; ++k) s += x[i][k] * y[k][j];
       r[i][j] = s;
     }
   return r;
 }
 
-std::array<Interval, 4> times(const std::array<Interval, 4>& a, const std::array<Interval, 4>& b) {
+std::array<F, 4> times(const std::array<F, 4>& a, const std::array<F, 4>& b) {
   return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
           a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1], a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
 }
@@ -56,12 +61,12 @@ std::optional<SymmetricLoop> SymmetricLoop::of(const formulate::Formulation& f) 
   for (int i = 0; i < 3; ++i) {
     const auto &x = links[i], &y = links[i + 3];
     if (!same(x.a, y.a) || !same(x.d, y.d) || !same(x.alpha, y.alpha)) return std::nullopt;
-    s.a_[i] = x.a;
-    s.d_[i] = x.d;
-    s.cos_alpha_[i] = rigorous::cos(x.alpha);
-    s.sin_alpha_[i] = rigorous::sin(x.alpha);
-    s.cos_half_alpha_[i] = rigorous::cos(x.alpha / 2.0);
-    s.sin_half_alpha_[i] = rigorous::sin(x.alpha / 2.0);
+    s.a_[i] = fast(x.a);
+    s.d_[i] = fast(x.d);
+    s.cos_alpha_[i] = fast(rigorous::cos(x.alpha));
+    s.sin_alpha_[i] = fast(rigorous::sin(x.alpha));
+    s.cos_half_alpha_[i] = fast(rigorous::cos(x.alpha / 2.0));
+    s.sin_half_alpha_[i] = fast(rigorous::sin(x.alpha / 2.0));
   }
   return s;
 }
@@ -89,8 +94,9 @@ Box SymmetricLoop::to_output(const Box& uv) const {
 SymmetricLoop::Trig SymmetricLoop::trig(const Angles& theta) {
   Trig t;
   for (int i = 0; i < 3; ++i) {
-    t.c[i] = rigorous::cos(theta[i]);
-    t.s[i] = rigorous::sin(theta[i]);
+    const fast_trig::SinCos sc = fast_trig::sin_cos(fast(theta[i]));
+    t.c[i] = sc.cos;
+    t.s[i] = sc.sin;
   }
   return t;
 }
@@ -101,15 +107,15 @@ SymmetricLoop::Trig SymmetricLoop::trig(const Angles& theta) {
 SymmetricLoop::M34 SymmetricLoop::chain(const Trig& t, int derivative, bool inverse) const {
   M44 product;
   for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) product[i][j] = Interval(i == j ? 1.0 : 0.0);
+    for (int j = 0; j < 4; ++j) product[i][j] = F(i == j ? 1.0 : 0.0);
   for (int step = 0; step < 3; ++step) {
     const int i = inverse ? 2 - step : step;
-    const Interval &c = t.c[i], &s = t.s[i];
+    const F &c = t.c[i], &s = t.s[i];
     const bool diff = derivative == i;
     // d/dtheta maps (c, s) to (-s, c) and drops the constant parts.
-    const Interval c1 = diff ? -s : c, s1 = diff ? c : s, one(diff ? 0.0 : 1.0);
-    const Interval &ca = cos_alpha_[i], &sa = sin_alpha_[i], &a = a_[i], &d = d_[i];
-    const Interval z(0.0), zd = diff ? z : d, zd_sa = diff ? z : -d * sa, zd_ca = diff ? z : -d * ca,
+    const F c1 = diff ? -s : c, s1 = diff ? c : s, one(diff ? 0.0 : 1.0);
+    const F &ca = cos_alpha_[i], &sa = sin_alpha_[i], &a = a_[i], &d = d_[i];
+    const F z(0.0), zd = diff ? z : d, zd_sa = diff ? z : -d * sa, zd_ca = diff ? z : -d * ca,
                    za = diff ? z : -a;
     M44 m;
     if (!inverse)
@@ -125,13 +131,13 @@ SymmetricLoop::M34 SymmetricLoop::chain(const Trig& t, int derivative, bool inve
   return r;
 }
 
-std::array<Interval, 4> SymmetricLoop::quaternion(const Trig& half, int derivative) const {
-  std::array<Interval, 4> q{Interval(1.0), Interval(0.0), Interval(0.0), Interval(0.0)};
-  const Interval z(0.0);
+std::array<F, 4> SymmetricLoop::quaternion(const Trig& half, int derivative) const {
+  std::array<F, 4> q{F(1.0), F(0.0), F(0.0), F(0.0)};
+  const F z(0.0);
   for (int i = 0; i < 3; ++i) {
-    const Interval &c = half.c[i], &s = half.s[i];
-    const std::array<Interval, 4> about_z =
-        derivative == i ? std::array<Interval, 4>{-s / 2.0, z, z, c / 2.0} : std::array<Interval, 4>{c, z, z, s};
+    const F &c = half.c[i], &s = half.s[i];
+    const std::array<F, 4> about_z =
+        derivative == i ? std::array<F, 4>{-s / 2.0, z, z, c / 2.0} : std::array<F, 4>{c, z, z, s};
     q = times(times(q, about_z), {cos_half_alpha_[i], sin_half_alpha_[i], z, z});
   }
   return q;
@@ -159,51 +165,59 @@ std::pair<std::array<Interval, 3>, std::array<Interval, 3>> halves(const Box& uv
 }  // namespace
 
 IVector SymmetricLoop::d_values(const Box& uv) const {
+  RoundingGuard guard;
   const auto [first, second] = halves(uv);
   const M34 t = chain(trig(first), -1, false), inv = chain(trig(second), -1, true);
   IVector d(12);
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 4; ++j) d(4 * i + j) = t[i][j] - inv[i][j];
+    for (int j = 0; j < 4; ++j) d(4 * i + j) = safe(t[i][j] - inv[i][j]);
   return d;
 }
 
 IVector SymmetricLoop::a_values(const Box& uv) const {
+  RoundingGuard guard;
   const auto [first, second] = halves(uv);
   const Trig a = trig(first), b = trig(second);
   const M34 ta = chain(a, -1, false), ia = chain(a, -1, true), tb = chain(b, -1, false), ib = chain(b, -1, true);
   IVector r(12);
   for (int i = 0; i < 3; ++i)
-    for (int c = 0; c < 4; ++c) r(4 * i + c) = ta[i][c] + ia[i][c] - tb[i][c] - ib[i][c];
+    for (int c = 0; c < 4; ++c) r(4 * i + c) = safe(ta[i][c] + ia[i][c] - tb[i][c] - ib[i][c]);
   return r;
 }
 
 // A = T(u + v) + T(u + v)^-1 - T(u - v) - T(u - v)^-1: d/dv_k sums the four factors'
 // derivatives (sign +1); d/du_k subtracts those at u - v (sign -1).
 IMatrix SymmetricLoop::a_jacobian(const Box& uv, double sign) const {
+  RoundingGuard guard;
   const auto [first, second] = halves(uv);
   const Trig a = trig(first), b = trig(second);
   IMatrix j(12, 3);
   for (int k = 0; k < 3; ++k) {
     const M34 ta = chain(a, k, false), ia = chain(a, k, true), tb = chain(b, k, false), ib = chain(b, k, true);
     for (int i = 0; i < 3; ++i)
-      for (int c = 0; c < 4; ++c) j(4 * i + c, k) = ta[i][c] + ia[i][c] + sign * (tb[i][c] + ib[i][c]);
+      for (int c = 0; c < 4; ++c) j(4 * i + c, k) = safe(ta[i][c] + ia[i][c] + sign * (tb[i][c] + ib[i][c]));
   }
   return j;
 }
 
-Interval SymmetricLoop::q0(const Box& u) const { return quaternion(trig(halved(take(u, 0))), -1)[0]; }
+Interval SymmetricLoop::q0(const Box& u) const {
+  RoundingGuard guard;
+  return safe(quaternion(trig(halved(take(u, 0))), -1)[0]);
+}
 
 IVector SymmetricLoop::r_values(const Box& u) const {
+  RoundingGuard guard;
   const auto th = take(u, 0);
   const auto q = quaternion(trig(halved(th)), -1);
   const M34 t = chain(trig(th), -1, false);
   IVector r(2);
-  r(0) = q[0];
-  r(1) = q[1] * t[0][3] + q[2] * t[1][3] + q[3] * t[2][3];
+  r(0) = safe(q[0]);
+  r(1) = safe(q[1] * t[0][3] + q[2] * t[1][3] + q[3] * t[2][3]);
   return r;
 }
 
 IMatrix SymmetricLoop::r_jacobian(const Box& u) const {
+  RoundingGuard guard;
   const auto th = take(u, 0);
   const Trig full = trig(th), half = trig(halved(th));
   const auto q = quaternion(half, -1);
@@ -212,9 +226,9 @@ IMatrix SymmetricLoop::r_jacobian(const Box& u) const {
   for (int k = 0; k < 3; ++k) {
     const auto dq = quaternion(half, k);
     const M34 dt = chain(full, k, false);
-    j(0, k) = dq[0];
-    j(1, k) = dq[1] * t[0][3] + dq[2] * t[1][3] + dq[3] * t[2][3] + q[1] * dt[0][3] + q[2] * dt[1][3] +
-              q[3] * dt[2][3];
+    j(0, k) = safe(dq[0]);
+    j(1, k) = safe(dq[1] * t[0][3] + dq[2] * t[1][3] + dq[3] * t[2][3] + q[1] * dt[0][3] + q[2] * dt[1][3] +
+                   q[3] * dt[2][3]);
   }
   return j;
 }

@@ -64,17 +64,19 @@ class SymmetricLoop {
 
  private:
   std::array<int, 6> output_of_{};
-  std::array<Interval, 3> a_, d_, cos_alpha_, sin_alpha_, cos_half_alpha_, sin_half_alpha_;
-  using M34 = std::array<std::array<Interval, 4>, 3>;
+  // Products run in FastInterval inside a RoundingGuard held by each public evaluation.
+  using F = FastInterval;
+  std::array<F, 3> a_, d_, cos_alpha_, sin_alpha_, cos_half_alpha_, sin_half_alpha_;
+  using M34 = std::array<std::array<F, 4>, 3>;
   using Angles = std::array<Interval, 3>;
   struct Trig {
-    Angles c, s;  // cos and sin of each angle
+    std::array<F, 3> c, s;  // cos and sin of each angle
   };
   static Trig trig(const Angles& theta);
   // T(theta) (rows 0-2), or with factor k replaced by its derivative; `inverse`: T(theta)^-1.
   M34 chain(const Trig& t, int derivative, bool inverse) const;
   // The quaternion of T's rotation from the half angles' cos and sin.
-  std::array<Interval, 4> quaternion(const Trig& half, int derivative) const;
+  std::array<F, 4> quaternion(const Trig& half, int derivative) const;
   newton::IMatrix a_jacobian(const Box& uv, double sign) const;
 };
 

@@ -232,7 +232,7 @@ size_t find(std::vector<size_t>& parent, size_t a) {
 }
 
 // Joins arcs whose end lies in another's box; angles are unbounded, so every end must be.
-void join(const std::vector<Box>& members, CurveMap& map) {
+void join(const std::vector<Box>& members, const std::vector<std::vector<size_t>>& covered, CurveMap& map) {
   const size_t count = map.arcs.size();
   std::vector<size_t> parent(count);
   std::iota(parent.begin(), parent.end(), 0);
@@ -257,11 +257,28 @@ void join(const std::vector<Box>& members, CurveMap& map) {
     if (fresh) map.components.push_back({{}, true, {}});
     MapComponent& c = map.components[it->second];
     c.arcs.push_back(a);
-    const Box& m = members.at(map.arcs[a].member);
-    c.extent = c.extent.empty() ? m : hull(c.extent, m);
+    for (size_t k : covered[a]) c.extent = c.extent.empty() ? members.at(k) : hull(c.extent, members.at(k));
   }
   map.proved = map.unresolved.empty() && map.undecided_ends == 0 && map.loose_ends == 0 && count > 0;
   state_map(map);
+}
+
+// The recorded arc whose box holds the piece's U with a margin (so that an end of another
+// arc inside the piece is inside that box), when every solution in the piece has v = 0: the
+// piece's solutions are then that arc's points over U.
+std::optional<size_t> covering_arc(const SymmetricLoop& loop, const CurveMap& map, const Box& uv) {
+  Box u = u_of(uv);
+  for (auto& x : u) {
+    const double margin = std::ldexp(width_up(x), -10);
+    x = x + Interval(-margin, margin);
+  }
+  for (size_t a = map.arcs.size(); a-- > 0;) {
+    if (!contains(map.arcs[a].arc.box, u)) continue;
+    const auto rows = loop.choose_rows(uv);
+    if (rows && loop.on_subspace(uv, *rows)) return a;
+    return std::nullopt;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -270,17 +287,25 @@ std::optional<CurveMap> map_symmetric(const SymmetricLoop& loop, const std::vect
   CurveMap map;
   map.argument = "symmetric loop";
   map.charts.assign(members.size(), 0);
+  std::vector<std::vector<size_t>> covered;  // per arc: the members whose pieces it covers
   size_t unresolved_members = 0;
   for (size_t k = 0; k < members.size(); ++k) {
     bool unresolved = false;
     walk_symmetric(
         loop.to_uv(members[k]),
         [&](const Box& piece) {
+          if (const auto a = covering_arc(loop, map, piece)) {
+            covered[*a].push_back(k);
+            return true;
+          }
           auto a = certify_symmetric(loop, piece, k);
           if (!a) return false;
           // The arc's box holds the piece's U, and every solution in it lies on the arc: a
           // piece whose U the arc misses holds none.
-          if (!arc_misses(loop, a->arc, u_of(piece), members[k])) map.arcs.push_back(std::move(*a));
+          if (!arc_misses(loop, a->arc, u_of(piece), members[k])) {
+            map.arcs.push_back(std::move(*a));
+            covered.push_back({k});
+          }
           return true;
         },
         // (u, v) pieces cover more than the member: what lies outside it needs no proof.
@@ -296,7 +321,7 @@ std::optional<CurveMap> map_symmetric(const SymmetricLoop& loop, const std::vect
     if (k + 1 >= 8 && 2 * unresolved_members > k + 1) return std::nullopt;
   }
   if (map.arcs.empty()) return map.unresolved.empty() ? std::optional(map) : std::nullopt;
-  join(members, map);
+  join(members, covered, map);
   return map;
 }
 

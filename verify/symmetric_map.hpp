@@ -6,6 +6,8 @@
 //    has v = 0), q_0 stays inside (-1, 1) on U, and a parametric Krawczyk test on R over
 //    U shows that R's zero set in U is exactly one arc, a graph over one side of U: then the
 //    solution set in U x V is exactly that arc at v = 0; or
+//  - covered: the uniqueness test holds over the piece and the box of an arc already found
+//    holds its U (with a margin): the piece's solutions are that arc's points; or
 //  - empty: an entry of D misses 0 over the piece, or the uniqueness test holds and V misses
 //    0, or it holds and R misses 0 on U while T(u) = I is excluded there.
 // Arcs are joined as in curve_map.hpp (an end inside another arc's box), in u, where they are
