@@ -6,6 +6,7 @@
 #include "formulate/load.hpp"
 #include "solve/checkpoint.hpp"
 #include "solve/output_file.hpp"
+#include "verify/symmetric_map.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -53,7 +54,7 @@ void add_search_flags(CLI::App& cmd, SolveCommand& s) {
   cmd.add_option("--rho", o.params.rho, "split when volume ratio after a shrink exceeds rho, 0 < R <= 1 (default: 0.99 on spherical cases, the papers' value; 0.8 elsewhere)")
       ->check(number(0, true, 1))
       ->type_name("R");
-  cmd.add_option("--narrow", o.params.narrow, "after the search, narrow uncertified solution boxes to width W with the same contractors, for curve maps that need narrow boxes (default 0: not; a symmetric six-joint loop's map needs about 0.005)")
+  cmd.add_option("--narrow", o.params.narrow, "after the search, narrow uncertified solution boxes to width W with the same contractors, for curve maps that need narrow boxes (default: 0.005 on a symmetric six-joint loop, whose curve map needs it; 0 elsewhere)")
       ->check(number(0, false))
       ->type_name("W");
   cmd.add_option("--order", o.params.order, "depth- or breadth-first order of the boxes (default dfs)")
@@ -180,6 +181,13 @@ void settle_options(SolveCommand& cmd, const formulate::LoadedCase& c, SavedRun&
     o.resume = &*resumed.saved;
   } else {
     resolve_settings(cmd, c.solve, c.file);
+  }
+  // A symmetric six-joint loop's curve map needs narrow members (verify/symmetric_map.hpp).
+  if (cmd.given("--narrow")) {
+    o.setting_source["narrow"] = "flag";
+  } else if (!cmd.no_verify && verify::SymmetricLoop::of(*c.formulation)) {
+    o.params.narrow = verify::kSymmetricPiece;
+    o.setting_source["narrow"] = "symmetric loop";
   }
   const std::string& checkpoint = cmd.checkpoint.empty() ? cmd.kept_checkpoint : cmd.checkpoint;
   if (!checkpoint.empty()) {

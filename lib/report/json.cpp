@@ -40,9 +40,10 @@ json parameters_json(const solve::RunOptions& options, const solve::CaseResult& 
           {"arith", to_string(options.strategy.arith)},
           {"time_limit", p.time_limit},
           {"cpu_limit", p.cpu_limit},
+          {"narrow", p.narrow},
           {"max_boxes", p.max_boxes},
           {"threads", options.threads},
-          // where the settings came from: "flag", "case file", "checkpoint"; absent: default
+          // where the settings came from: "flag", "case file", "checkpoint", "symmetric loop"; absent: default
           {"sources", options.setting_source}};
 }
 

@@ -10,6 +10,7 @@
 #include "verify/certify_case.hpp"
 #include "verify/check.hpp"
 #include "verify/symmetric_map.hpp"
+#include "tests/cli_run.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -165,6 +166,21 @@ TEST_CASE("the mobile 6R, narrowed, maps to one proved closed curve", "[verify][
         return;
       }
   }));
+}
+
+TEST_CASE("with no flags a symmetric loop is narrowed and mapped: cyclohexane's chairs and boat loop",
+          "[verify][map][cli][slow]") {
+  const std::string out = test::scratch("cyclohexane.json");
+  const test::Ran r = test::run_cli("solve " + test::src("cases/linkages/cyclohexane.toml") + " --json " + out);
+  REQUIRE(r.code == 0);
+  const nlohmann::json j = test::read_json(out);
+  CHECK(j["parameters"]["narrow"] == verify::kSymmetricPiece);
+  CHECK(j["parameters"]["sources"]["narrow"] == "symmetric loop");
+  CHECK(j["headline"].get<std::string>().rfind("exactly 2 isolated roots and 1 closed curve", 0) == 0);
+  CHECK(test::run_cli("check " + out).code == 0);
+  // Without verification there is no map to narrow for: the search is the plain one.
+  REQUIRE(test::run_cli("solve " + test::src("cases/linkages/cyclohexane.toml") + " --no-verify --json " + out).code == 0);
+  CHECK(test::read_json(out)["parameters"]["narrow"] == 0);
 }
 
 TEST_CASE("check rejects a tampered map", "[verify][map][check]") {
