@@ -72,11 +72,24 @@ def main():
         members = [tuple(m) for m in c["members"]]
         cmap = c.get("map")
         if cmap and cmap.get("proved"):
-            for comp in cmap["components"]:
+            owner = {}  # member index -> component of an arc made in it
+            for k, comp in enumerate(cmap["components"]):
+                for a in comp["arcs"]:
+                    owner[cmap["arcs"][a]["member"]] = k
+            # A symmetric loop's arc also covers members it made no arc in: the nearest
+            # member with an arc names their component.
+            with_arc = sorted(owner)
+            centre = lambda m: [(lo + hi) / 2 for lo, hi in members[m]]
+            for m in range(len(members)):
+                if m not in owner:
+                    d = [sum((x - y) ** 2 for x, y in zip(centre(m), centre(a))) for a in with_arc] \
+                        if len(cmap["components"]) > 1 else [0]
+                    owner[m] = owner[with_arc[d.index(min(d))]]
+            for k, comp in enumerate(cmap["components"]):
                 colour = colours(component % 10)
                 label = "%s %d (%d arcs)" % ("closed curve" if comp["closed"] else "open arc", component + 1, len(comp["arcs"]))
-                for n, a in enumerate(comp["arcs"]):
-                    key = members[cmap["arcs"][a]["member"]]
+                for n, m in enumerate(m for m in range(len(members)) if owner[m] == k):
+                    key = members[m]
                     b = boxes[key]
                     ax.add_patch(Rectangle((b[i][0], b[j][0]), b[i][1] - b[i][0], b[j][1] - b[j][0], facecolor=colour,
                                            edgecolor=colour, alpha=0.5, label=label if n == 0 else None))
