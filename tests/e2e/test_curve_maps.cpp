@@ -168,6 +168,16 @@ TEST_CASE("the mobile 6R, narrowed, maps to one proved closed curve", "[verify][
   }));
 }
 
+TEST_CASE("the mobile 6R's map is the same under the lp strategy at sigma 0.03", "[verify][map][slow]") {
+  const std::string file = "cases/linkages/6r-mobile.toml";
+  const Mapped m = solve_text(read(file), file, "lp", 0.03, verify::kSymmetricPiece);
+  CHECK(m.v.maps_proved);
+  CHECK(m.v.closed_curves == 1);
+  CHECK(m.v.open_arcs == 0);
+  CHECK(m.v.certified_roots == 0);
+  CHECK(m.v.headline.rfind("exactly 0 isolated roots and 1 closed curve", 0) == 0);
+}
+
 TEST_CASE("with no flags a symmetric loop is narrowed and mapped: cyclohexane's chairs and boat loop",
           "[verify][map][cli][slow]") {
   const std::string out = test::scratch("cyclohexane.json");
