@@ -137,17 +137,26 @@ TEST_CASE("a nearly mobile 6R loop is never a proved curve", "[verify][map]") {
   CHECK(m.v.headline.rfind("exactly", 0) != 0);
 }
 
-TEST_CASE("the mobile 6R, narrowed, maps to one proved closed curve", "[verify][map][slow]") {
-  // Every solution has theta_i = theta_{i+3}; the loop's symmetry proves the map once the
-  // search's contractors narrow its boxes.
-  const std::string file = "cases/linkages/6r-mobile.toml";
-  const Mapped m = solve_text(read(file), file, "auto", 0.1, verify::kSymmetricPiece);
+namespace {
+
+// The mobile 6R's map: one proved closed curve, nothing else.
+void require_one_closed_curve(const Mapped& m) {
   CHECK(m.v.maps_proved);
   CHECK(m.v.closed_curves == 1);
   CHECK(m.v.open_arcs == 0);
   CHECK(m.v.certified_roots == 0);
   CHECK(m.v.unverified == 0);
   CHECK(m.v.headline.rfind("exactly 0 isolated roots and 1 closed curve", 0) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("the mobile 6R, narrowed, maps to one proved closed curve", "[verify][map][slow]") {
+  // Every solution has theta_i = theta_{i+3}; the loop's symmetry proves the map once the
+  // search's contractors narrow its boxes.
+  const std::string file = "cases/linkages/6r-mobile.toml";
+  const Mapped m = solve_text(read(file), file, "auto", 0.1, verify::kSymmetricPiece);
+  require_one_closed_curve(m);
   // check re-proves the map and the clusters emptied through the symmetry, and no more.
   const auto failures = verify::check_certificates(m.j, *m.c.formulation).failures;
   for (auto& why : failures) UNSCOPED_INFO(why);
@@ -171,11 +180,7 @@ TEST_CASE("the mobile 6R, narrowed, maps to one proved closed curve", "[verify][
 TEST_CASE("the mobile 6R's map is the same under the lp strategy at sigma 0.03", "[verify][map][slow]") {
   const std::string file = "cases/linkages/6r-mobile.toml";
   const Mapped m = solve_text(read(file), file, "lp", 0.03, verify::kSymmetricPiece);
-  CHECK(m.v.maps_proved);
-  CHECK(m.v.closed_curves == 1);
-  CHECK(m.v.open_arcs == 0);
-  CHECK(m.v.certified_roots == 0);
-  CHECK(m.v.headline.rfind("exactly 0 isolated roots and 1 closed curve", 0) == 0);
+  require_one_closed_curve(m);
 }
 
 TEST_CASE("with no flags a symmetric loop is narrowed and mapped: cyclohexane's chairs and boat loop",
