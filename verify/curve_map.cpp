@@ -238,7 +238,7 @@ std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::
           newton::Arc a = tried != sample.end() ? std::move(tried->second)
                                                 : newton::certify_arc(eqs, piece, sys.domain, options);
           if (!a.certified) return false;
-          map.arcs.push_back({k, charts[k], piece, std::move(a)});
+          map.arcs.push_back({k, charts[k], piece, std::move(a), {}});
           return true;
         },
         [&](const Box& piece) { return piece_empty(sys.equations, eqs, piece); },

@@ -107,6 +107,21 @@ FastInterval CompiledSystem::sum(const Compiled& c, const FastInterval* powers) 
   return s;
 }
 
+double CompiledSystem::sum_operations(const std::vector<Compiled>& sums) const {
+  double n = 0;
+  for (auto& c : sums)
+    for (int t = c.begin; t < c.end; ++t) n += 1 + terms_[t].end - terms_[t].begin;  // its products and the sum
+  return n;
+}
+
+double CompiledSystem::value_operations() const {
+  return power_count_ + sum_operations(values_) + kLinkOperations * static_cast<double>(links_.size());
+}
+
+double CompiledSystem::jacobian_operations() const {
+  return power_count_ + sum_operations(partials_) + 2 * kLinkOperations * static_cast<double>(links_.size());
+}
+
 void CompiledSystem::values(const Box& x, FastInterval* f) const {
   const FastInterval* powers = fill_powers(x);
   for (size_t i = 0; i < values_.size(); ++i) f[i] = sum(values_[i], powers);

@@ -38,6 +38,10 @@ class CompiledSystem {
   void values(const Box& x, FastInterval* f) const;
   void jacobian(const Box& x, FastInterval* j) const;
   void evaluate(const Box& x, FastInterval* f, FastInterval* j) const;
+  // What one values() and one jacobian() cost, counted in interval products and sums
+  // (prune::Counters::operations); evaluate() costs both, values_at() about the first.
+  double value_operations() const;
+  double jacobian_operations() const;
   // Values at the point y (each coordinate a double), as degenerate intervals.
   void values_at(const double* y, FastInterval* f) const;
   // In plain double with midpoint coefficients, in whatever rounding mode is set: for a
@@ -57,6 +61,7 @@ class CompiledSystem {
   Compiled add(const Polynomial& p, Arith arith);
   FastInterval* fill_powers(const Box& x) const;  // into this thread's scratch table
   FastInterval sum(const Compiled& c, const FastInterval* powers) const;
+  double sum_operations(const std::vector<Compiled>& sums) const;
   const double* float_powers(const double* y) const;
   double float_sum(const Compiled& c, const double* powers) const;
   void add_links(const std::vector<Link>& links, size_t variables);

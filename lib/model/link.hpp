@@ -17,6 +17,10 @@ namespace linkbox::model {
 enum class Elementary { exp, log, sinh, cosh, tanh, asin, acos, atan, sin, cos };
 const char* to_string(Elementary f);
 
+// One link's image, inverse or derivative through MPFI costs about this many interval
+// products (prune::Counters::operations' unit).
+constexpr double kLinkOperations = 300;
+
 struct Link {
   Elementary f;
   int y = -1, a = -1;  // variable indices: x[y] = f(x[a])

@@ -31,8 +31,9 @@ class Contractor {
   // returns true, the contractor returns what it has proved so far, so a time limit or an
   // interrupt is honoured within one step. The function must outlive its use.
   virtual void stop_when(const std::function<bool()>* request) { (void)request; }
-  // Adds the work done so far that only the contractor itself can count (an LP-based one:
-  // LPs solved, simplex iterations, the exact backend's paths) to `counters`; none by default.
+  // Adds the work done so far that only the contractor itself can count (its operations; an
+  // LP-based one: LPs solved, simplex iterations, the exact backend's paths) to `counters`;
+  // none by default.
   virtual void add_work(Counters& counters) const { (void)counters; }
 };
 

@@ -21,6 +21,7 @@ Outcome Counted::contract(Box& box) {
   c.calls++;
   c.lps_solved += work.lps_solved - work_before.lps_solved;
   c.lp_iterations += work.lp_iterations - work_before.lp_iterations;
+  c.operations += work.operations - work_before.operations;
   c.lp_paths += work.lp_paths;
   c.lp_paths -= work_before.lp_paths;
   c.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

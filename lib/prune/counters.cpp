@@ -9,6 +9,7 @@ Counters& Counters::operator+=(const Counters& o) {
   volume_removed += o.volume_removed;
   lps_solved += o.lps_solved;
   lp_iterations += o.lp_iterations;
+  operations += o.operations;
   lp_paths += o.lp_paths;
   return *this;
 }

@@ -22,6 +22,9 @@ struct Counters {
   double volume_removed = 0;  // sum over calls of (1 - volume ratio) on the split dimensions
   long lps_solved = 0;        // LP-based contractors: LPs solved (a min or a max each)
   long lp_iterations = 0;     // and the simplex iterations they took
+  // The work done, counted from the system's structure and the LPs' sizes and pivots in one
+  // unit (about one interval multiply-add), so that contractors of different kinds compare.
+  double operations = 0;
   LpPaths lp_paths;
 
   Counters& operator+=(const Counters& o);

@@ -54,9 +54,28 @@ Hc4::Hc4(const std::vector<model::Polynomial>& equations, Arith arith, const std
     add(c.g);
     strict_.push_back(c.strict);
   }
+  // A term of p factors: p products and two sums forward, and per factor p products and a
+  // projection backward, each about two interval products; a power adds its pow() and its
+  // root (a square root; for a higher power nth_root's Newton iteration, the costliest part).
+  for (auto& terms : equations_)
+    for (auto& t : terms) {
+      const double p = static_cast<double>(t.powers.size());
+      call_operations_ += 2 * (3 + p + p * (p + 1));
+      for (auto [v, e] : t.powers) call_operations_ += e == 2 ? 10 : e > 2 ? 230 : 0;
+    }
+  call_operations_ += model::kLinkOperations * static_cast<double>(links_.size());
 }
 
+std::unique_ptr<Contractor> Hc4::clone() const {
+  auto c = std::make_unique<Hc4>(*this);
+  c->operations_ = 0;
+  return c;
+}
+
+void Hc4::add_work(Counters& counters) const { counters.operations += operations_; }
+
 Outcome Hc4::contract(Box& box) {
+  operations_ += call_operations_;
   return with_rounding(arith_, [&] { return revise(box); });
 }
 

@@ -16,7 +16,9 @@ class Hc4 final : public Contractor {
                const std::vector<model::Inequality>& inequalities = {}, std::vector<model::Link> links = {});
   std::string name() const override { return arith_ == Arith::verified ? "hc4" : "hc4-float"; }
   Outcome contract(Box& box) override;
-  std::unique_ptr<Contractor> clone() const override { return std::make_unique<Hc4>(*this); }
+  std::unique_ptr<Contractor> clone() const override;
+  void add_work(Counters& counters) const override;
+  double call_operations() const { return call_operations_; }  // what one contract() costs
 
  private:
   struct Term {
@@ -29,6 +31,7 @@ class Hc4 final : public Contractor {
   std::vector<model::Link> links_;
   std::vector<FastInterval> value_, prefix_, suffix_;  // scratch
   Arith arith_;
+  double call_operations_ = 0, operations_ = 0;
   Outcome revise(Box& box);
 };
 

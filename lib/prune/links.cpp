@@ -26,6 +26,7 @@ Outcome Links::contract(Box& box) {
   bool any = false;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     bool shrunk = false;
+    operations_ += model::kLinkOperations * static_cast<double>(links_.size());
     if (!narrow_links(links_, box, shrunk)) return Outcome::empty;
     any = any || shrunk;
     if (!shrunk) break;

@@ -90,6 +90,7 @@ std::unique_ptr<Contractor> LpRelaxation::clone() const {
 void LpRelaxation::add_work(Counters& counters) const {
   counters.lps_solved += lps_solved_;
   counters.lp_iterations += solver_->iterations();
+  counters.operations += solver_->operations();
   counters.lp_paths += solver_->paths();
 }
 

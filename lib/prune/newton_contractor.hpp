@@ -22,6 +22,8 @@ class IntervalNewton final : public Contractor {
   std::string name() const override { return arith_ == Arith::verified ? "newton" : "newton-float"; }
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override { return std::make_unique<IntervalNewton>(*this); }
+  void add_work(Counters& counters) const override { counters.operations += operations_; }
+  double step_operations() const;  // what one contract() costs that reaches Gauss-Seidel
   // The last step's image lay strictly inside the box in every coordinate: C F has exactly
   // one root there, so F has at most one (a square F: exactly one). A hint for when to try a
   // certificate; the certificate itself is proved elsewhere.
@@ -29,10 +31,12 @@ class IntervalNewton final : public Contractor {
 
  private:
   Outcome step(Box& box);
+  double solve_operations() const;
 
   model::CompiledSystem system_;
   Arith arith_;
   bool unique_ = false;
+  double operations_ = 0;
   // Scratch.
   std::vector<FastInterval> f_, j_, a_, b_, d_;
   Eigen::MatrixXd jm_, c_;

@@ -37,7 +37,15 @@ Sequence::Sequence(std::vector<std::unique_ptr<Counted>> members, std::vector<in
 std::unique_ptr<Sequence> Sequence::clone_sequence() const {
   std::vector<std::unique_ptr<Counted>> m;
   for (const Counted* c : members_) m.push_back(c->clone_counted());
-  return std::unique_ptr<Sequence>(new Sequence(std::move(m), dims_, stages_, stall_));
+  std::unique_ptr<Sequence> s(new Sequence(std::move(m), dims_, stages_, stall_));
+  s->operations_per_box_ = operations_per_box_;
+  return s;
+}
+
+double Sequence::operations() const {
+  double n = 0;
+  for (const Counted* m : members_) n += m->counters().operations;
+  return n;
 }
 
 std::vector<Counters> Sequence::counters() const {

@@ -27,6 +27,12 @@ class Sequence final : public Contractor {
   void stop_when(const std::function<bool()>* request) override { staged_->stop_when(request); }
   void add_work(Counters& counters) const override { staged_->add_work(counters); }
 
+  // The race's unit of work (solve/search.hpp): what one box of propagation and Newton costs
+  // on this sequence's system, in Counters::operations. Kept by clones.
+  void set_operations_per_box(double operations) { operations_per_box_ = operations; }
+  double operations_per_box() const { return operations_per_box_; }
+  double operations() const;  // the members' counters' operations, summed
+
   std::vector<Counters> counters() const;  // per member
   void add_counters(const Sequence& other);  // same members, e.g. a clone run elsewhere
   void set_counters(const std::vector<Counters>& counters);  // a resumed run
@@ -40,6 +46,7 @@ class Sequence final : public Contractor {
   std::vector<int> dims_;
   std::vector<int> stages_;  // per member
   double stall_;
+  double operations_per_box_ = 1;
 };
 
 }  // namespace linkbox::prune

@@ -30,6 +30,7 @@ std::unique_ptr<Contractor> TaylorRelaxation::clone() const {
 void TaylorRelaxation::add_work(Counters& counters) const {
   counters.lps_solved += lps_solved_;
   counters.lp_iterations += solver_->iterations();
+  counters.operations += operations_ + solver_->operations();
   counters.lp_paths += solver_->paths();
 }
 
@@ -45,6 +46,8 @@ void TaylorRelaxation::add_corner_rows(const Box& box, bool upper_corner, lp::Li
   for (int j = 0; j < n; ++j) corner_[j] = upper_corner ? box[j].upper() : box[j].lower();
   at_corner_.resize(m);
   with_rounding(arith_, [&] { system_->values_at(corner_.data(), at_corner_.data()); });
+  // Each entry's two right-hand-side products in Interval, which sets the rounding mode.
+  operations_ += system_->value_operations() + 8.0 * system_->nonzeros();
   std::vector<std::vector<std::pair<int, double>>> low(m), high(m);
   std::vector<Interval> low_rhs(m, Interval(0.0)), high_rhs(m, Interval(0.0));
   for (int e = 0; e < system_->nonzeros(); ++e) {
@@ -75,6 +78,7 @@ bool TaylorRelaxation::relax(const Box& box, lp::LinearProgram& program) {
   range_.resize(m);
   jacobian_.resize(system_->nonzeros());
   with_rounding(arith_, [&] { system_->evaluate(box, range_.data(), jacobian_.data()); });
+  operations_ += system_->value_operations() + system_->jacobian_operations();
   for (const FastInterval& f : range_)
     if (excludes_zero(f)) return false;
   program.clear();

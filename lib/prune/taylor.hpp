@@ -40,6 +40,7 @@ class TaylorRelaxation final : public Contractor {
   Arith arith_;
   std::unique_ptr<lp::LpSolver> solver_;
   long lps_solved_ = 0;
+  double operations_ = 0;  // its own, the LP solver's apart
   const std::function<bool()>* stop_ = nullptr;
   // Scratch: F over the box, J over the box, F at a corner; the corner.
   std::vector<FastInterval> range_, jacobian_, at_corner_;

@@ -62,7 +62,8 @@ json contractors_json(const solve::CaseResult& result) {
     auto& c = result.counters[k];
     json cj = {{"name", result.contractor_names.at(k)}, {"calls", c.calls}, {"emptied", c.emptied},
                {"volume_removed", c.volume_removed}, {"seconds", c.seconds},
-               {"lps_solved", c.lps_solved}, {"lp_iterations", c.lp_iterations}};
+               {"lps_solved", c.lps_solved}, {"lp_iterations", c.lp_iterations},
+               {"operations", c.operations}};
     if (c.lps_solved > 0) {
       // The LP contractor's cost: how many LPs a box takes (over every box processed, those
       // it did not run on included) and what one costs (the contractor's seconds, its bound

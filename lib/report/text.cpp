@@ -20,7 +20,7 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
   std::string race_line;
   std::string prune = asked == ran || ran.empty() ? asked : asked + " (ran " + ran + ")";
   if (!r.subproblems.empty() && r.subproblems[0].race.size() > 1) {
-    // Work in boxes + LPs weighted as boxes (solve::kLpWork), the winner last.
+    // Work in boxes of propagation (solve/search.hpp), the winner last.
     std::string race;
     for (auto& [name, work] : r.subproblems[0].race) {
       char w[64];
@@ -28,7 +28,7 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
       race += w;
     }
     race.pop_back();
-    race_line = "race      work (boxes + LPs as boxes):" + race + "\n";
+    race_line = "race      work (in boxes of propagation):" + race + "\n";
   }
   const std::string asked_bisect = solve::to_string(o.bisect);
   const std::string bisect =

@@ -18,7 +18,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr int kFormat = 1;
+constexpr int kFormat = 2;
 
 json num(double x) { return exact_json(x); }
 double num(const json& j) { return exact_double(j); }
@@ -44,7 +44,7 @@ Stats stats_in(const json& j) {
 json counters_out(const std::vector<prune::Counters>& cs) {
   json j = json::array();
   for (auto& c : cs) {
-    json x = {c.calls, c.emptied, num(c.seconds), num(c.volume_removed), c.lps_solved, c.lp_iterations};
+    json x = {c.calls, c.emptied, num(c.seconds), num(c.volume_removed), c.lps_solved, c.lp_iterations, num(c.operations)};
     if (c.lp_paths.any())
       x.push_back({c.lp_paths.basis, c.lp_paths.repaired, c.lp_paths.farkas, c.lp_paths.fallback, c.lp_paths.pivots});
     j.push_back(x);
@@ -61,8 +61,9 @@ std::vector<prune::Counters> counters_in(const json& j) {
     c.volume_removed = num(x.at(3));
     c.lps_solved = x.at(4);
     c.lp_iterations = x.at(5);
-    if (x.size() > 6) {
-      const json& p = x.at(6);
+    c.operations = num(x.at(6));
+    if (x.size() > 7) {
+      const json& p = x.at(7);
       c.lp_paths = {p.at(0).get<long>(), p.at(1).get<long>(), p.at(2).get<long>(), p.at(3).get<long>(), p.at(4).get<long>()};
     }
     cs.push_back(c);

@@ -22,8 +22,8 @@ struct StrategyOptions {
 // What a strategy runs on `sub`: itself, or for "auto" its candidates: trapezoid clipping on
 // the spherical paper's formulation; otherwise propagation and Newton alone, or with the LP
 // relaxation where they stall. The LP relaxation cuts the box count by orders of magnitude,
-// but an LP costs as much as kLpWork boxes, so which one wins depends on the system
-// (papers/decisions/solve-driver.md): solve/race.hpp races them.
+// but an LP costs as much as many boxes, how many depending on the system, so which one wins
+// depends on the system too (papers/decisions/solve-driver.md): solve/race.hpp races them.
 std::vector<Strategy> candidates(const Strategy& strategy, const formulate::SubProblem& sub);
 
 struct Pruning {

@@ -11,9 +11,10 @@ namespace {
 constexpr double kRaceShare = 0.125;
 constexpr double kFirstTurn = 4000;
 
-// The projection flatters the LP candidate early on: its first LPs remove whole slabs of the
-// box. The lead passes to a costlier candidate only when it is projected this many times
-// cheaper than the first.
+// The projection flatters the LP candidate early on (its first LPs remove whole slabs of the
+// box) and any candidate while the part of the tree left is the hard part. The lead passes
+// only to a candidate projected this many times cheaper than the one that holds it, so a
+// projection's noise does not hand it back and forth (each change wastes the turns before).
 constexpr double kLeadMargin = 2;
 
 // Progress is the share of the search tree resolved (Search::tree_done), not of the volume:
@@ -97,9 +98,9 @@ void Race::next_turn() {
 }
 
 void Race::pick_lead() {
-  at_.lead = 0;
-  for (size_t k = 1; k < racers_.size(); ++k)
-    if (projected(*racers_[k]->search) * kLeadMargin < projected(*racers_[at_.lead]->search)) at_.lead = k;
+  const size_t held = at_.lead;
+  for (size_t k = 0; k < racers_.size(); ++k)
+    if (k != held && projected(*racers_[k]->search) * kLeadMargin < projected(*racers_[at_.lead]->search)) at_.lead = k;
 }
 
 // First turn: every candidate gets the share (a costly first box of one should not delay

@@ -44,8 +44,8 @@ struct SubResult {
   Strategy strategy;                      // what ran ("auto" resolved; none when no search did)
   std::string bisect;                     // the bisection rule ("auto" resolved)
   double rho = 0;                         // the rho used (auto resolved)
-  // When "auto" raced candidates: each one's name and work done (boxes + kLpWork per LP),
-  // the winner last.
+  // When "auto" raced candidates: each one's name and work done (in boxes of propagation,
+  // search.hpp), the winner last.
   std::vector<std::pair<std::string, double>> race;
 };
 

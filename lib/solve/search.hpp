@@ -20,12 +20,14 @@
 
 namespace linkbox::solve {
 
-// A search's work is counted in boxes processed (see papers/decisions/search.md for both prices).
-// One LP costs about as much as this many boxes of propagation and Newton.
-constexpr double kLpWork = 15;
+// A search's work is counted in boxes of propagation: a box costs its contractors' operations
+// (prune::Counters::operations: the system's structure, each LP's size and pivots) over what
+// one pass of HC4 and Newton costs on the system (Sequence::operations_per_box), and at least
+// 1. So an LP is priced by the system it relaxes, not by a constant (see
+// papers/decisions/search.md).
 // A solution box that Newton has not certified is work still to come (clustering, Newton on its
 // cluster, refinement): a strategy that leaves many such boxes is not cheap, however fast it
-// reached them. It changes together with kLpWork.
+// reached them.
 constexpr double kSolutionWork = 100;
 
 // A search that can be paused and resumed: run() processes boxes until the search is

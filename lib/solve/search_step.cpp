@@ -41,12 +41,6 @@ Verdict shrink(Box& box, prune::Sequence::Backoff& backoff, prune::Sequence& con
   }
 }
 
-long lps_of(const prune::Sequence& c) {
-  long n = 0;
-  for (auto& k : c.counters()) n += k.lps_solved;
-  return n;
-}
-
 char outcome_of(Verdict v) {
   return v == Verdict::empty ? 'e' : v == Verdict::solution ? 's' : v == Verdict::certified ? 'c' : 'x';
 }
@@ -67,14 +61,14 @@ Processed process(const Setup& setup, const LogPlace& log, prune::Sequence& c, C
   Node taken = node;
   p.stats.processed++;
   p.volume = volume_ratio(setup.start, node.box, setup.split_dims);
-  const long lps = lps_of(c);
+  const double operations = c.operations();
   const auto shrink_start = log.log ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   p.verdict = shrink(node.box, node.backoff, c, certify, setup.split_dims, setup.params, cut, stop, p.stats);
   const Verdict v = p.verdict;
   if (log.log && v != Verdict::stopped)
     log.log->add({log.subproblem, log.candidate, node.path, v == Verdict::empty ? 'e' : v == Verdict::split ? 'x' : 's',
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - shrink_start).count()});
-  p.work = 1 + kLpWork * static_cast<double>(lps_of(c) - lps) + (v == Verdict::solution ? kSolutionWork : 0);
+  p.work = std::max(1.0, (c.operations() - operations) / c.operations_per_box()) + (v == Verdict::solution ? kSolutionWork : 0);
   if (v == Verdict::stopped) {
     c.set_counters(counters_before);  // its work undone in the counts
     p.node = std::move(taken);

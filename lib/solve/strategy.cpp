@@ -59,6 +59,15 @@ std::unique_ptr<Contractor> make_newton(const StrategyOptions& options, const fo
                                                  pruned.links);
 }
 
+// One pass of HC4 and Newton over a box, whatever the strategy: every candidate of a race is
+// priced in this one unit.
+double box_operations(const formulate::SubProblem& sub) {
+  const model::System& pruned = sub.pruned();
+  const prune::Hc4 hc4(pruned.equations, Arith::verified, pruned.inequalities, pruned.links);
+  const prune::IntervalNewton newton(pruned.equations, pruned.variables.size(), Arith::verified, pruned.links);
+  return std::max(1.0, hc4.call_operations() + newton.step_operations());
+}
+
 std::unique_ptr<Contractor> make_taylor(const StrategyOptions& options, const formulate::SubProblem& sub) {
   const model::System& pruned = sub.pruned();
   const auto backend = options.arith != Arith::verified ? prune::lp::LpBackend::float_trusted : options.lp;
@@ -197,6 +206,7 @@ Pruning make_pruning(const Strategy& strategy, const StrategyOptions& options, c
   }
   if (members.size() == links) throw std::invalid_argument("no pruning strategy given");
   auto sequence = std::make_unique<prune::Sequence>(std::move(members), sub.split_dims, std::move(stages), options.stall);
+  sequence->set_operations_per_box(box_operations(sub));
   return {strategy, std::move(sequence)};
 }
 

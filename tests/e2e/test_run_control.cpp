@@ -214,7 +214,7 @@ TEST_CASE("a checkpoint of another case, of other settings or damaged is refused
   r = run("resume " + cp + " --quiet --case " + src("cases/spherical/agile-eye.toml"));
   CHECK(r.code == 2);
   CHECK(r.out.find("was made for another case") != std::string::npos);
-  write(cp + ".bad", "{\"linkbox_checkpoint\": 1, \"header\": {}, \"subproblems\": [{\"phase\": \"dreaming\"}]}");
+  write(cp + ".bad", "{\"linkbox_checkpoint\": 2, \"header\": {}, \"subproblems\": [{\"phase\": \"dreaming\"}]}");
   r = run("resume " + cp + ".bad --quiet --case " + src("cases/spherical/wrist.toml"));
   CHECK(r.code == 2);
   write(cp + ".bad", "{");

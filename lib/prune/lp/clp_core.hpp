@@ -57,6 +57,12 @@ class ClpCore {
   // The last solve's basis, one status per column and per row.
   void basis(std::vector<BasisStatus>& cols, std::vector<BasisStatus>& rows) const;
   long iterations() const { return iterations_; }
+  // Each load and each solve priced by its size and pivots (Counters::operations), fitted to
+  // measured times (papers/decisions/search.md): a pivot costs about the same on every
+  // relaxation measured (CLP's own overhead dominates at these sizes); a load builds a new
+  // CLP model.
+  double operations() const { return operations_; }
+  static constexpr double kPivotOperations = 2000;
 
  private:
   LinearProgram program_;  // as loaded: the rigorous bounds are computed on this one
@@ -65,6 +71,7 @@ class ClpCore {
   std::unique_ptr<ClpSimplex> model_;
   int objective_col_ = -1;  // the single non-zero of CLP's current objective
   long iterations_ = 0;
+  double operations_ = 0;
   double primal_tolerance_ = 0, dual_tolerance_ = 0;  // 0: CLP's defaults
 };
 

@@ -26,6 +26,7 @@ class ExactLp final : public LpSolver {
 
   bool last_point(std::vector<double>& x) const override { return clp_.point(x); }
   long iterations() const override { return clp_.iterations(); }
+  double operations() const override { return clp_.operations(); }
   LpPaths paths() const override { return paths_; }
 
   // Exact pivots allowed from CLP's basis before CGAL takes over: an exact pivot costs far

@@ -71,6 +71,7 @@ class Recorder final : public LpSolver {
   LpBound maximize(int col) override { return note(col, -1, inner_->maximize(col)); }
   bool last_point(std::vector<double>& x) const override { return inner_->last_point(x); }
   long iterations() const override { return inner_->iterations(); }
+  double operations() const override { return inner_->operations(); }
   LpPaths paths() const override { return inner_->paths(); }
 
  private:

@@ -48,6 +48,9 @@ class LpSolver {
   virtual bool last_point(std::vector<double>& /*x*/) const { return false; }
   // Simplex iterations over the solver's lifetime (0 where the backend does not say).
   virtual long iterations() const { return 0; }
+  // The work of the loads and solves so far in Counters::operations' unit (0 where the
+  // backend does not count it).
+  virtual double operations() const { return 0; }
   // How the answers so far were reached (the exact backend; zero elsewhere).
   virtual LpPaths paths() const { return {}; }
 };

@@ -19,6 +19,7 @@ class SafeLp final : public LpSolver {
 
   bool last_point(std::vector<double>& x) const override { return clp_.point(x); }
   long iterations() const override { return clp_.iterations(); }
+  double operations() const override { return clp_.operations(); }
 
  private:
   LpBound solve(int col, double sense);  // min of sense * x[col], sense = +-1
