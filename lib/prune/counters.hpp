@@ -24,6 +24,8 @@ struct Counters {
   long lp_iterations = 0;     // and the simplex iterations they took
   // The work done, counted from the system's structure and the LPs' sizes and pivots in one
   // unit (about one interval multiply-add), so that contractors of different kinds compare.
+  // Every count added is a multiple of 1/4, so sums stay exact in double (below 2^51): a
+  // box's share of the work is the same on whichever thread's clone ran it.
   double operations = 0;
   LpPaths lp_paths;
 

@@ -15,6 +15,8 @@ constexpr double kFirstTurn = 4000;
 // box) and any candidate while the part of the tree left is the hard part. The lead passes
 // only to a candidate projected this many times cheaper than the one that holds it, so a
 // projection's noise does not hand it back and forth (each change wastes the turns before).
+// The candidate must also be at least as far along the tree as the holder: one that has run
+// less looks cheaper only because it has not reached the hard part yet.
 constexpr double kLeadMargin = 2;
 
 // Progress is the share of the search tree resolved (Search::tree_done), not of the volume:
@@ -99,8 +101,13 @@ void Race::next_turn() {
 
 void Race::pick_lead() {
   const size_t held = at_.lead;
-  for (size_t k = 0; k < racers_.size(); ++k)
-    if (k != held && projected(*racers_[k]->search) * kLeadMargin < projected(*racers_[at_.lead]->search)) at_.lead = k;
+  for (size_t k = 0; k < racers_.size(); ++k) {
+    const Search& challenger = *racers_[k]->search;
+    const Search& holder = *racers_[at_.lead]->search;
+    if (k != held && challenger.tree_done() >= holder.tree_done() &&
+        projected(challenger) * kLeadMargin < projected(holder))
+      at_.lead = k;
+  }
 }
 
 // First turn: every candidate gets the share (a costly first box of one should not delay

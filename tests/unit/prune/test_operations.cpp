@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <random>
 
 using namespace linkbox;
@@ -36,6 +37,9 @@ Box around(const std::vector<double>& r, double w) {
   return b;
 }
 
+// Counts are exact in double only as multiples of 1/4 (counters.hpp).
+bool quarters(double x) { return std::fmod(4 * x, 1.0) == 0; }
+
 double operations_of(const prune::Contractor& c) {
   prune::Counters k;
   c.add_work(k);
@@ -47,7 +51,7 @@ double operations_of(const prune::Contractor& c) {
 TEST_CASE("propagation and Newton cost their structure on every box", "[operations]") {
   std::mt19937 rng(3);
   std::vector<double> root;
-  const auto f = planted(5, rng, root);
+  const auto f = planted(7, rng, root);  // 7^3 / 4 is not a whole number
   prune::Hc4 hc4(f);
   prune::IntervalNewton newton(f, root.size());
   for (double w : {0.5, 0.01, 1e-6}) {
@@ -60,6 +64,8 @@ TEST_CASE("propagation and Newton cost their structure on every box", "[operatio
     CHECK(operations_of(newton) - n0 == newton.step_operations());
   }
   CHECK(hc4.call_operations() > 0);
+  CHECK(quarters(hc4.call_operations()));
+  CHECK(quarters(newton.step_operations()));
 }
 
 TEST_CASE("an LP costs its pivots, and a larger relaxation more per LP", "[operations]") {
@@ -74,6 +80,7 @@ TEST_CASE("an LP costs its pivots, and a larger relaxation more per LP", "[opera
     prune::Counters c;
     taylor.add_work(c);
     REQUIRE(c.lps_solved > 0);
+    CHECK(quarters(c.operations));
     CHECK(c.operations >= prune::lp::ClpCore::kPivotOperations * static_cast<double>(c.lp_iterations + c.lps_solved));
     per_lp[k] = c.operations / static_cast<double>(c.lps_solved);
   }
