@@ -241,7 +241,7 @@ TEST_CASE("a root exactly on an inequality's boundary is reported as such", "[in
   }
 }
 
-TEST_CASE("boxes straddling an inequality are reported; boxes wholly outside are excluded", "[inequalities][verify]") {
+TEST_CASE("boxes straddling an inequality are reported, boxes wholly outside are excluded", "[inequalities][verify]") {
   // y = 1 touches the circle at (0, 1): a double root, never certified. x^3 <= sin(pi)
   // holds there with equality, and sin(pi) is an enclosure of 0, not 0: the cluster
   // straddles it.

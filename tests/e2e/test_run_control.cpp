@@ -124,7 +124,7 @@ TEST_CASE("flags override the case's settings, and the summary says where each c
   CHECK(r.out.find(path + ":6: [solve] prune: unknown pruning strategy 'hc5'") != std::string::npos);
 }
 
-TEST_CASE("rho without a setting: the papers' 0.99 on spherical cases, 0.8 elsewhere; a flag wins", "[run_control][cli]") {
+TEST_CASE("rho without a setting: the papers' 0.99 on spherical cases, 0.8 elsewhere, and a flag wins", "[run_control][cli]") {
   const std::string path = tmp("rho.toml"), out = tmp("rho.json");
   write(path, kCircle);
   Ran r = run("solve " + path + " --json " + out + " --quiet");
@@ -316,7 +316,7 @@ solve::Result search_with(std::unique_ptr<prune::Contractor> c, solve::Params p)
 
 }  // namespace
 
-TEST_CASE("a box whose passes never stop shrinking still yields to an interrupt; NaN bounds are not a result",
+TEST_CASE("a box whose passes never stop shrinking still yields to an interrupt, and NaN bounds are not a result",
           "[run_control]") {
   std::atomic<int> interrupt{0};
   solve::Params p;
