@@ -23,27 +23,29 @@ Key key_of(size_t member, const Box& piece) {
   return k;
 }
 
-// The arcs speak of every natural equation, n - 1 of them, each once.
-bool equations_fit(const CurveMap& m, size_t equations, size_t unknowns) {
-  if (m.equations.size() != equations || equations + 1 != unknowns) return false;
+// The arcs speak of every natural equation, each once: n - 1 of them, or more through a
+// coordinate subspace that the system has.
+bool equations_fit(const CurveMap& m, ArcSystems& systems, size_t equations, size_t unknowns) {
+  if (m.equations.size() != equations) return false;
   for (size_t k = 0; k < equations; ++k)
     if (m.equations[k] != static_cast<int>(k)) return false;
-  return true;
+  if (m.subspace_variable < 0) return equations + 1 == unknowns;
+  const auto& s = systems.subspace(m.charts[0]);
+  return s && s->variable == m.subspace_variable;
 }
 
 // Re-proves the arcs (their image and ends recomputed) and walks every member's pieces.
-void reprove(const formulate::Formulation& f, const std::vector<Box>& members, CurveMap& m, MapCheck& out) {
+void reprove(const formulate::Formulation& f, const std::vector<Box>& members, ArcSystems& systems, CurveMap& m,
+             MapCheck& out) {
   std::map<Key, size_t> arc_at;
   for (size_t a = 0; a < m.arcs.size(); ++a) arc_at.emplace(key_of(m.arcs[a].member, m.arcs[a].piece), a);
   std::set<Key> unresolved;
   for (auto& [member, piece] : m.unresolved) unresolved.insert(key_of(member, piece));
-  std::map<std::uint64_t, std::shared_ptr<const model::CompiledSystem>> kept;
   std::vector<bool> visited(m.arcs.size(), false);
   for (size_t k = 0; k < members.size(); ++k) {
     const std::uint64_t chart = m.charts[k];
     const auto& sys = f.natural(chart);
-    auto& eqs = kept[chart];
-    if (!eqs) eqs = std::make_shared<const model::CompiledSystem>(pick(sys.equations, m.equations), sys.unknowns.size());
+    const auto& exclusion = systems.for_exclusion(chart, m.subspace_variable);
     Box natural;
     try {
       natural = f.output_to_natural(chart, members[k]);
@@ -57,13 +59,13 @@ void reprove(const formulate::Formulation& f, const std::vector<Box>& members, C
       MapArc& a = m.arcs[it->second];
       const bool fits = a.chart == chart && contains(a.arc.box, piece) &&
                         (sys.domain.empty() || contains(sys.domain, a.arc.box));
-      a.arc = newton::arc_from(eqs, a.arc.box, a.arc.parameter, a.arc.preconditioner);
-      if (!fits || !a.arc.certified) out.failures.push_back("an arc certificate does not hold on its piece");
+      if (!systems.reprove(a, m.subspace_variable) || !fits)
+        out.failures.push_back("an arc certificate does not hold on its piece");
       visited[it->second] = true;
       ++out.arcs;
       return true;
     };
-    auto is_empty = [&](const Box& piece) { return piece_empty(sys.equations, eqs, piece); };
+    auto is_empty = [&](const Box& piece) { return piece_empty(sys.equations, exclusion, piece); };
     walk_pieces(natural, is_arc, is_empty, [&](const Box& piece, PieceKind kind) {
       if (kind == PieceKind::unresolved && !unresolved.count(key_of(k, piece)))
         out.failures.push_back("a piece with neither an arc nor a proof of emptiness is not listed as unresolved");
@@ -147,11 +149,12 @@ MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, con
     return out;
   }
   const auto& sys = f.natural(m.charts[0]);
-  if (!equations_fit(m, sys.equations.size(), sys.unknowns.size())) {
-    out.failures.push_back("the map's equations are not the natural system's n - 1");
+  ArcSystems systems(f);
+  if (!equations_fit(m, systems, sys.equations.size(), sys.unknowns.size())) {
+    out.failures.push_back("the map's equations are not the natural system's n - 1, nor redundant through its subspace");
     return out;
   }
-  reprove(f, members, m, out);
+  reprove(f, members, systems, m, out);
   if (!out.failures.empty()) return out;
   join_arcs(f, members, m);
   if (shape(m.components) != shape(stated.components) || m.proved != stated.proved)

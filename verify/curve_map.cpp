@@ -60,8 +60,10 @@ void state_map(CurveMap& map) {
   if (open) what += (what.empty() ? "" : " and ") + plural(open, "open arc", "open arcs") + " (ending on the domain's boundary)";
   if (what.empty()) what = "no arc";
   if (map.proved) {
+    const std::string subspace = map.subspace_variable < 0 ? "" : " (each also an arc, on " + map.argument +
+        " = 0, of the equations that do not vanish there)";
     map.statement = what + ", proved: " + plural(map.arcs.size(), "arc certificate", "arc certificates") +
-                    ", no singular point";
+                    subspace + ", no singular point";
     return;
   }
   std::string why;
@@ -82,27 +84,49 @@ namespace {
 // every member's pieces.
 constexpr size_t kSample = 16, kSampleNeeded = 12;
 
-// The sample's arcs by member (uncertified ones too, so no member is tried twice whole);
-// empty when too few hold.
-template <class KeptIn>
-std::map<size_t, newton::Arc> sample_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
-                                          const std::vector<std::uint64_t>& charts, KeptIn&& kept_in,
-                                          const newton::NewtonOptions& options) {
+// The sample's arcs by member (failed tries too, so no member is tried twice whole); empty
+// when too few hold.
+template <class Prove>
+std::map<size_t, std::optional<MapArc>> sample_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
+                                                    const std::vector<std::uint64_t>& charts, Prove&& prove) {
   const size_t tries = std::min(kSample, members.size());
-  std::map<size_t, newton::Arc> sample;
+  std::map<size_t, std::optional<MapArc>> sample;
   size_t passed = 0;
   for (size_t s = 0; s < tries; ++s) {
     const size_t k = s * members.size() / tries;
     try {
-      const Box natural = f.output_to_natural(charts[k], members[k]);
-      newton::Arc a = newton::certify_arc(kept_in(charts[k]), natural, f.natural(charts[k]).domain, options);
-      passed += a.certified;
+      auto a = prove(k, f.output_to_natural(charts[k], members[k]));
+      passed += a.has_value();
       sample.emplace(k, std::move(a));
     } catch (const std::exception&) {
     }
   }
   if (passed * kSample < kSampleNeeded * tries) sample.clear();
   return sample;
+}
+
+// An arc through the piece: of n - 1 equations, or of a redundant system through its
+// coordinate subspace (each choice of the surplus equation kept in turn).
+std::optional<MapArc> prove_arc(const formulate::Formulation& f, ArcSystems& systems, int subspace_variable,
+                                size_t member, std::uint64_t chart, const Box& piece,
+                                const newton::NewtonOptions& options) {
+  const Box& domain = f.natural(chart).domain;
+  if (subspace_variable < 0) {
+    newton::Arc a = newton::certify_arc(systems.kept(chart, {}), piece, domain, options);
+    if (!a.certified) return std::nullopt;
+    return MapArc{member, chart, piece, std::move(a), {}, {}};
+  }
+  const auto& s = systems.subspace(chart);
+  if (!s || s->variable != subspace_variable) return std::nullopt;
+  Box mid = piece;
+  for (auto& x : mid) x = Interval(median(x));
+  for (size_t v : keep_order(*s, mid)) {
+    std::vector<int> dropped = dropped_for(*s, v);
+    newton::Arc a = newton::certify_arc(systems.kept(chart, dropped), piece, domain, options);
+    if (a.certified && spans_on_subspace(*s, a.box, a.parameter))
+      return MapArc{member, chart, piece, std::move(a), {}, std::move(dropped)};
+  }
+  return std::nullopt;
 }
 
 // The unresolved pieces in output variables, grouped where they touch, as hulls.
@@ -124,6 +148,43 @@ std::vector<Box> regions(const formulate::Formulation& f, const CurveMap& map, b
 }
 
 }  // namespace
+
+const std::shared_ptr<const model::CompiledSystem>& ArcSystems::kept(std::uint64_t chart,
+                                                                    const std::vector<int>& dropped) {
+  auto& eqs = kept_[{chart, dropped}];
+  if (!eqs) {
+    const auto& sys = f_.natural(chart);
+    eqs = std::make_shared<const model::CompiledSystem>(pick(sys.equations, rows_except(sys.equations.size(), dropped)),
+                                                        sys.unknowns.size());
+  }
+  return eqs;
+}
+
+const std::optional<CoordinateSubspace>& ArcSystems::subspace(std::uint64_t chart) {
+  auto it = subspace_.find(chart);
+  if (it == subspace_.end()) {
+    const auto& sys = f_.natural(chart);
+    it = subspace_.emplace(chart, coordinate_subspace(sys.equations, sys.unknowns.size())).first;
+  }
+  return it->second;
+}
+
+const std::shared_ptr<const model::CompiledSystem>& ArcSystems::for_exclusion(std::uint64_t chart,
+                                                                             int subspace_variable) {
+  const auto& s = subspace_variable < 0 ? std::nullopt : subspace(chart);
+  return kept(chart, s ? dropped_for(*s, 0) : std::vector<int>{});
+}
+
+bool ArcSystems::reprove(MapArc& a, int subspace_variable) {
+  const auto& sys = f_.natural(a.chart);
+  for (int d : a.dropped)
+    if (d < 0 || d >= static_cast<int>(sys.equations.size())) return false;
+  a.arc = newton::arc_from(kept(a.chart, a.dropped), a.arc.box, a.arc.parameter, a.arc.preconditioner);
+  if (!a.arc.certified) return false;
+  if (subspace_variable < 0) return a.dropped.empty();
+  const auto& s = subspace(a.chart);
+  return s && s->variable == subspace_variable && spans_on_subspace(*s, a.arc.box, a.arc.parameter);
+}
 
 bool piece_empty(const std::vector<model::Polynomial>& all, const std::shared_ptr<const model::CompiledSystem>& kept,
                  const Box& piece) {
@@ -186,6 +247,11 @@ void join_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
   }
   map.proved = map.unresolved.empty() && map.undecided_ends == 0 && map.loose_ends == 0 &&
                count > 0;
+  if (map.subspace_variable >= 0 && !map.charts.empty()) {
+    const auto& names = f.natural(map.charts[0]).unknowns;
+    const size_t k = static_cast<size_t>(map.subspace_variable);
+    map.argument = k < names.size() ? names[k] : "x" + std::to_string(k);
+  }
   state_map(map);
 }
 
@@ -206,22 +272,25 @@ std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::
                                     const std::vector<std::uint64_t>& charts, const newton::NewtonOptions& options) {
   const auto& first = f.natural(charts.at(0));
   const size_t n = first.unknowns.size(), m = first.equations.size();
-  if (n < 2 || m + 1 != n || members.empty()) return std::nullopt;
+  if (n < 2 || members.empty()) return std::nullopt;
+  ArcSystems systems(f);
   CurveMap map;
   map.charts = charts;
   map.equations = rows_except(m, {});
-  std::map<std::uint64_t, std::shared_ptr<const model::CompiledSystem>> kept;
-  auto kept_in = [&](std::uint64_t chart) -> const std::shared_ptr<const model::CompiledSystem>& {
-    auto& eqs = kept[chart];
-    if (!eqs) eqs = std::make_shared<const model::CompiledSystem>(pick(f.natural(chart).equations, map.equations), n);
-    return eqs;
+  if (m + 1 != n) {
+    const auto& s = systems.subspace(charts[0]);
+    if (!s) return std::nullopt;
+    map.subspace_variable = s->variable;
+  }
+  auto prove = [&](size_t k, const Box& piece) {
+    return prove_arc(f, systems, map.subspace_variable, k, charts[k], piece, options);
   };
-  std::map<size_t, newton::Arc> sample = sample_arcs(f, members, charts, kept_in, options);
+  auto sample = sample_arcs(f, members, charts, prove);
   if (sample.empty()) return std::nullopt;
   std::vector<size_t> unresolved_members;
   for (size_t k = 0; k < members.size(); ++k) {
     const auto& sys = f.natural(charts[k]);
-    const auto& eqs = kept_in(charts[k]);
+    const auto& exclusion = systems.for_exclusion(charts[k], map.subspace_variable);
     Box natural;
     try {
       natural = f.output_to_natural(charts[k], members[k]);
@@ -235,13 +304,12 @@ std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::
           // The walk asks for the whole member first, which the sample may have tried.
           auto tried = whole ? sample.find(k) : sample.end();
           whole = false;
-          newton::Arc a = tried != sample.end() ? std::move(tried->second)
-                                                : newton::certify_arc(eqs, piece, sys.domain, options);
-          if (!a.certified) return false;
-          map.arcs.push_back({k, charts[k], piece, std::move(a), {}});
+          auto a = tried != sample.end() ? std::move(tried->second) : prove(k, piece);
+          if (!a) return false;
+          map.arcs.push_back(std::move(*a));
           return true;
         },
-        [&](const Box& piece) { return piece_empty(sys.equations, eqs, piece); },
+        [&](const Box& piece) { return piece_empty(sys.equations, exclusion, piece); },
         [&](const Box& piece, PieceKind kind) {
           if (kind != PieceKind::unresolved) return;
           map.unresolved.emplace_back(k, piece);

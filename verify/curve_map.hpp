@@ -13,7 +13,9 @@
 // an enclosure that straddles a box is not decided, and the map is then not proved.
 #include "formulate/formulation.hpp"
 #include "newton/arc.hpp"
+#include "verify/coordinate_subspace.hpp"
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +30,9 @@ struct MapArc {
   // A symmetric loop's arc (verify/symmetric_map.hpp): the rows of D and the preconditioner
   // of its uniqueness test in v (rows[0] < 0: an arc of the kept equations).
   Eigen::MatrixXd v_preconditioner;
+  // A map through a coordinate subspace (verify/coordinate_subspace.hpp): the equations the
+  // arc's certificate leaves out.
+  std::vector<int> dropped;
 };
 
 struct MapComponent {
@@ -38,10 +43,14 @@ struct MapComponent {
 
 struct CurveMap {
   // What the arcs are arcs of: "" for n - 1 of the natural equations; "symmetric loop" for a
-  // six-joint loop's reduced system (verify/symmetric_map.hpp), whose arcs are in u.
+  // six-joint loop's reduced system (verify/symmetric_map.hpp), whose arcs are in u; with a
+  // subspace_variable, that variable's name (for the statement).
   std::string argument;
   std::vector<std::uint64_t> charts;  // per member: the chart its pieces are in
   std::vector<int> equations;  // natural equations whose zero set the arcs are (all, n - 1)
+  // >= 0: the system is redundant, and each arc is also one of the rest on x_k = 0 with this
+  // k (verify/coordinate_subspace.hpp); `equations` are then all of them.
+  int subspace_variable = -1;
   std::vector<MapArc> arcs;
   std::vector<std::pair<size_t, Box>> unresolved;  // (member, piece): no arc, not proved empty
   std::vector<MapComponent> components;
@@ -53,6 +62,25 @@ struct CurveMap {
   // smooth closed curve or an arc ending on the domain's boundary.
   bool proved = false;
   std::string statement;  // the map in words, with what is not proved and why
+};
+
+// The systems a map's arcs are arcs of, per chart, compiled once: the kept equations (all but
+// an arc's dropped ones) and, for a redundant system, the chart's coordinate subspace.
+class ArcSystems {
+ public:
+  explicit ArcSystems(const formulate::Formulation& f) : f_(f) {}
+  const std::shared_ptr<const model::CompiledSystem>& kept(std::uint64_t chart, const std::vector<int>& dropped);
+  const std::optional<CoordinateSubspace>& subspace(std::uint64_t chart);
+  // What an exclusion by arc_excluded is tried on: n - 1 of the equations.
+  const std::shared_ptr<const model::CompiledSystem>& for_exclusion(std::uint64_t chart, int subspace_variable);
+  // The arc re-proved from its box, parameter and preconditioner (image and ends recomputed)
+  // and, with a subspace, its span there; false when a test fails.
+  bool reprove(MapArc& a, int subspace_variable);
+
+ private:
+  const formulate::Formulation& f_;
+  std::map<std::pair<std::uint64_t, std::vector<int>>, std::shared_ptr<const model::CompiledSystem>> kept_;
+  std::map<std::uint64_t, std::optional<CoordinateSubspace>> subspace_;
 };
 
 // Bisection depth of a member's pieces: at most 2^kMapDepth pieces per member.
@@ -80,9 +108,9 @@ bool piece_empty(const std::vector<model::Polynomial>& all, const std::shared_pt
                  const Box& piece);
 
 // The map of a cluster whose members (output variables, unwrapped) lie in `charts`; empty
-// when the natural system is not n - 1 equations in n unknowns (a structurally redundant
-// system, such as a mobile loop's closure, needs an argument this map does not make), or when
-// arcs hold on too few of the members to state one.
+// when the natural system is neither n - 1 equations in n unknowns nor redundant through a
+// coordinate subspace (a mobile loop's closure needs an argument this map does not make), or
+// when arcs hold on too few of the members to state one.
 std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::vector<Box>& members,
                                     const std::vector<std::uint64_t>& charts, const newton::NewtonOptions& options);
 

@@ -28,7 +28,7 @@ Eigen::MatrixXd matrix_from(const json& j) {
 
 json map_json(const CurveMap& map) {
   json arcs = json::array();
-  for (auto& a : map.arcs)
+  for (auto& a : map.arcs) {
     arcs.push_back({{"member", a.member},
                     {"chart", a.chart},
                     {"piece", exact_json(a.piece)},
@@ -37,6 +37,8 @@ json map_json(const CurveMap& map) {
                     {"preconditioner", matrix_json(a.arc.preconditioner)},
                     {"image", exact_json(a.arc.image)},
                     {"ends", {exact_json(a.arc.ends[0]), exact_json(a.arc.ends[1])}}});
+    if (!a.dropped.empty()) arcs.back()["dropped_equations"] = a.dropped;
+  }
   json components = json::array();
   for (auto& c : map.components)
     components.push_back({{"arcs", c.arcs}, {"closed", c.closed}, {"extent", exact_json(c.extent)}});
@@ -44,7 +46,7 @@ json map_json(const CurveMap& map) {
   for (auto& r : map.singular_regions) regions.push_back(exact_json(r));
   json unresolved = json::array();
   for (auto& [member, piece] : map.unresolved) unresolved.push_back({{"member", member}, {"piece", exact_json(piece)}});
-  return {{"proved", map.proved},
+  json out = {{"proved", map.proved},
           {"statement", map.statement},
           {"equations", map.equations},
           {"charts", map.charts},
@@ -54,6 +56,8 @@ json map_json(const CurveMap& map) {
           {"unresolved", unresolved},
           {"singular_regions", regions},
           {"arcs", arcs}};
+  if (map.subspace_variable >= 0) out["subspace_variable"] = map.subspace_variable;
+  return out;
 }
 
 CurveMap map_from(const json& j) {
@@ -61,6 +65,7 @@ CurveMap map_from(const json& j) {
   map.proved = j.at("proved");
   map.statement = j.at("statement");
   map.equations = j.at("equations").get<std::vector<int>>();
+  map.subspace_variable = j.value("subspace_variable", -1);
   map.charts = j.at("charts").get<std::vector<std::uint64_t>>();
   for (auto& c : j.at("components"))
     map.components.push_back({c.at("arcs").get<std::vector<size_t>>(), c.at("closed").get<bool>(), exact_box(c.at("extent"))});
@@ -79,6 +84,7 @@ CurveMap map_from(const json& j) {
     m.arc.preconditioner = matrix_from(a.at("preconditioner"));
     m.arc.image = exact_box(a.at("image"));
     m.arc.ends = {exact_box(a.at("ends").at(0)), exact_box(a.at("ends").at(1))};
+    if (a.contains("dropped_equations")) m.dropped = a.at("dropped_equations").get<std::vector<int>>();
     map.arcs.push_back(std::move(m));
   }
   return map;

@@ -175,6 +175,17 @@ Arc arc_from(const std::shared_ptr<const model::CompiledSystem>& f, const Box& b
   return arc_of(f, s, parametric_krawczyk(f, box, parameter, preconditioner), box, parameter, preconditioner);
 }
 
+Arc arc_over(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box, int parameter) {
+  const int n = static_cast<int>(box.size());
+  Arc none;
+  none.parameter = parameter;
+  none.box = box;
+  if (n < 2 || f->rows() != n - 1 || f->cols() != n || parameter < 0 || parameter >= n || !finite(box)) return none;
+  const SquareSystem s(f, all_but(n, parameter), box);
+  const auto c = inverse_of(midpoint(s.jacobian(s.restrict(box))));
+  return c ? arc_from(f, box, parameter, *c) : none;
+}
+
 bool arc_excluded(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box) {
   const int n = static_cast<int>(box.size());
   if (n < 2 || f->rows() != n - 1 || f->cols() != n || !finite(box)) return false;

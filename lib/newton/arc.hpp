@@ -36,6 +36,10 @@ Arc certify_arc(const std::shared_ptr<const model::CompiledSystem>& f, const Box
 Arc arc_from(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box, int parameter,
              const Eigen::MatrixXd& preconditioner);
 
+// arc_from with C the inverse of the midpoint Jacobian over `box` (computed from the box
+// alone, so a checker recomputes the same test).
+Arc arc_over(const std::shared_ptr<const model::CompiledSystem>& f, const Box& box, int parameter);
+
 // Proves that the n-1 equations have no root in `box`: for some parameter p, the Krawczyk
 // image of the other sides over box[p] (C: the inverse midpoint Jacobian there, computed from
 // the box alone, so a checker recomputes the same test) misses them.

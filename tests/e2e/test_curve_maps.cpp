@@ -89,7 +89,8 @@ void require_map(const Mapped& m, const std::map<std::string, std::string>& want
 TEST_CASE("curve cases give the map in their header, whatever the strategy", "[verify][map]") {
   const std::string file = GENERATE(as<std::string>{}, "cases/curves/fourbar-grashof.toml",
                                     "cases/curves/fourbar-nongrashof.toml", "cases/curves/fourbar-half-domain.toml",
-                                    "cases/curves/circle-3d.toml", "cases/curves/fourbar-parallelogram.toml");
+                                    "cases/curves/circle-3d.toml", "cases/curves/fourbar-parallelogram.toml",
+                                    "cases/curves/circle-on-plane.toml");
   const std::string prune = GENERATE(as<std::string>{}, "auto", "hc4,newton", "hc4,newton/lp");
   INFO(file << " under " << prune);
   const std::string text = read(file);
@@ -135,6 +136,37 @@ TEST_CASE("a nearly mobile 6R loop is never a proved curve", "[verify][map]") {
   CHECK(proved_maps(m.v) == 0);
   CHECK_FALSE(m.v.maps_proved);
   CHECK(m.v.headline.rfind("exactly", 0) != 0);
+}
+
+TEST_CASE("gimbal lock's redundant closure maps through phi2 = 0, whatever the strategy and sigma", "[verify][map]") {
+  const std::string file = "cases/hard/gimbal-lock.toml";
+  const auto [prune, sigma] = GENERATE(std::pair<std::string, double>{"auto", 0.01}, std::pair<std::string, double>{"trapezoid", 0.1},
+                                       std::pair<std::string, double>{"hc4,newton", 0.03});
+  INFO(prune << " at sigma " << sigma);
+  const Mapped m = solve_text(read(file), file, prune, sigma);
+  require_map(m, {{"isolated", "0"}, {"closed", "1"}, {"open", "0"}, {"proved", "yes"}});
+  for (auto& c : m.v.clusters)
+    if (c.map) CHECK(c.map->subspace_variable == 1);
+}
+
+TEST_CASE("a nearly redundant system is never mapped through a subspace", "[verify][map]") {
+  // Constant terms of 1e-9 where the redundant systems have exact zeros: the circle-on-plane's
+  // solutions are then isolated, and the wrist, turned by 1e-9 about x, is not locked.
+  std::string plane = read("cases/curves/circle-on-plane.toml");
+  const auto at = plane.find("\"z*(x - 0.5)\"");
+  REQUIRE(at != std::string::npos);
+  plane.replace(at, 13, "\"z*(x - 0.5) + 1e-9\"");
+  std::string wrist = read("cases/hard/gimbal-lock.toml");
+  const auto end = wrist.find("  { axis = [0, 0, 1], angle = \"-0.7\" },");
+  REQUIRE(end != std::string::npos);
+  wrist.insert(end, "  { axis = [1, 0, 0], angle = \"1e-9\" },\n");
+  for (auto& [text, sigma] : {std::pair{plane, 0.05}, std::pair{wrist, 0.01}}) {
+    const Mapped m = solve_text(text, "nearly-redundant.toml", "auto", sigma);
+    INFO(m.v.headline);
+    CHECK(proved_maps(m.v) == 0);
+    CHECK(m.v.closed_curves == 0);
+    for (auto& c : m.v.clusters) CHECK_FALSE(c.map);
+  }
 }
 
 namespace {
@@ -222,6 +254,24 @@ TEST_CASE("check rejects a tampered map", "[verify][map][check]") {
     b[p][0] = j["clusters"][0]["map"]["arcs"][0]["piece"][p][1];
   }));
   CHECK(rejected([](auto& j) { j["clusters"][0]["map"]["equations"] = {0, 1}; }));  // one left out
+}
+
+TEST_CASE("check rejects a tampered map through a subspace", "[verify][map][check]") {
+  const std::string file = "cases/curves/circle-on-plane.toml";
+  const Mapped m = solve_text(read(file), file, "auto", 0.05);
+  REQUIRE(verify::check_certificates(m.j, *m.c.formulation).failures.empty());
+  size_t at = 0;
+  while (at < m.j["clusters"].size() && !m.j["clusters"][at].contains("map")) ++at;
+  REQUIRE(at < m.j["clusters"].size());
+  auto rejected = [&](auto&& edit) {
+    nlohmann::json j = m.j;
+    edit(j["clusters"][at]["map"]);
+    return !verify::check_certificates(j, *m.c.formulation).failures.empty();
+  };
+  CHECK(rejected([](auto& map) { map.erase("subspace_variable"); }));  // three equations in three unknowns
+  CHECK(rejected([](auto& map) { map["subspace_variable"] = 0; }));   // nothing vanishes on x = 0
+  CHECK(rejected([](auto& map) { map["arcs"][0].erase("dropped_equations"); }));
+  CHECK(rejected([](auto& map) { map["arcs"][0]["dropped_equations"] = {7}; }));
 }
 
 TEST_CASE("arc certificate: a circle's arc is proved, a crossing never", "[newton][map]") {
