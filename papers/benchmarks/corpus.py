@@ -30,12 +30,13 @@ TOOLS = ("linkbox", "ibexsolve")
 
 # What was found by hand in the logs (linkbox's JSON, IbexSolve's report) of the run corpus.csv
 # holds, on files where the counts differ or something is left unresolved, and on odd runs.
-OUTSIDE = ("domain [1e-8, 2*pi-1e-8]: the root with every x_i = 0 lies 1e-8 outside it; linkbox "
-           "certifies that root but cannot tell on which side of the domain's edge it lies, so leaves "
+OUTSIDE = ("domain [1e-8, 2*pi-1e-8]: the roots with every x_i = 0 and every x_i = 2*pi lie 1e-8 outside it; linkbox "
+           "certifies the latter but cannot tell on which side of the domain's edge it lies, so leaves "
            "it unresolved and does not count it")
 NOTES = {
     "non-polynom/Trigo1-0005.bch": OUTSIDE + "; IbexSolve does not report it: both count the 3 roots inside.",
     "non-polynom/Trigo1-0012.bch": OUTSIDE + " (IbexSolve stopped at its limit).",
+    "non-polynom/Trigo1-0014.bch": OUTSIDE + " (IbexSolve stopped at its limit).",
     "non-polynom/Trigo1-0100sp.bch": (
         "domain [0.1, 2*pi]: the only root, every x_i = 2*pi, lies on the domain's edge; neither tool "
         "certifies a root on the edge (IbexSolve calls its box 'unknown')."),
