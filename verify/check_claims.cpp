@@ -106,6 +106,7 @@ const std::vector<TrustedField>& trusted_fields() {
       {"strategy", "the settings the search ran with"},
       {"bisect", "the settings the search ran with"},
       {"race", "figures of the search"},
+      {"race_choices", "the search's own account of its race"},
       {"stats", "figures of the search"},
       {"contractors", "figures of the search"},
       {"subproblem_stats", "figures of the search (pending boxes: consistency only)"},

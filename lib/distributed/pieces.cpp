@@ -31,13 +31,15 @@ Piece piece_from(const Message& m) {
   p.subproblem = m.head.at("sub");
   p.strategy = solve::Strategy::parse(m.head.at("strategy").get<std::string>());
   p.race = m.head.value("race", std::vector<std::pair<std::string, double>>{});
+  p.race_choices = m.head.value("race_choices", std::vector<std::string>{});
   p.state = std::move(c.searches.at(0));
   p.counters = std::move(c.counters.at(0));
   return p;
 }
 
 nlohmann::json piece_head(const char* type, const Piece& p) {
-  return {{"t", type}, {"sub", p.subproblem}, {"strategy", p.strategy.text()}, {"race", p.race}};
+  return {{"t", type}, {"sub", p.subproblem}, {"strategy", p.strategy.text()}, {"race", p.race},
+          {"race_choices", p.race_choices}};
 }
 
 }  // namespace linkbox::distributed

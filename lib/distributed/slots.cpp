@@ -46,7 +46,7 @@ class Slots::Sharing final : public solve::Sharing {
   bool give(size_t i, const solve::Strategy& strategy, solve::Lender& search) override {
     s_.steal.store(false);
     auto node = search.give();
-    Piece gift{i, strategy, {}, {}, {}};
+    Piece gift{i, strategy, {}, {}, {}, {}};
     const bool gave = node.has_value();
     if (gave) gift.state.pending.push_back(std::move(*node));
     json head = piece_head("gift", gift);
@@ -64,7 +64,7 @@ class Slots::Sharing final : public solve::Sharing {
   bool lend(size_t i, const solve::Strategy& strategy, solve::Lender& search) override {
     s_.steal.store(false);
     const auto node = search.lend();
-    Piece gift{i, strategy, {}, {}, {}};
+    Piece gift{i, strategy, {}, {}, {}, {}};
     if (node) gift.state.pending.push_back(*node);
     long lease;
     {
@@ -96,7 +96,7 @@ class Slots::Sharing final : public solve::Sharing {
       std::lock_guard lock(s_.m);
       lease = s_.unit_lease;
     }
-    Piece part{i, {}, {}, {}, {}};
+    Piece part{i, {}, {}, {}, {}, {}};
     part.state.records = std::move(records);
     slots_.post({0, {{"t", "records"}, {"sub", i}, {"lease", lease}}, piece_text(part)});
   }

@@ -139,6 +139,7 @@ json result_json(const std::string& case_name, const std::string& case_file,
   if (!result.subproblems.empty() && result.subproblems[0].race.size() > 1) {
     json race = json::array();  // "auto": the candidates raced, each one's work, the winner last
     for (auto& [name, work] : result.subproblems[0].race) race.push_back({{"strategy", name}, {"work", work}});
+    j["race_choices"] = result.subproblems[0].race_choices;
     j["race"] = race;
   }
   j["complete"] = result.complete;

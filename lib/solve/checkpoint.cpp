@@ -161,7 +161,8 @@ json result_out(const SubResult& r) {
           {"counters", counters_out(r.counters)},
           {"strategy", strategy_out(r.strategy)},
           {"bisect", r.bisect},
-          {"race", race}};
+          {"race", race},
+          {"race_choices", r.race_choices}};
 }
 SubResult result_in(const json& j) {
   SubResult r;
@@ -180,6 +181,7 @@ SubResult result_in(const json& j) {
   r.strategy = strategy_in(j.at("strategy"));
   r.bisect = j.at("bisect");
   for (auto& x : j.at("race")) r.race.push_back({x.at(0).get<std::string>(), num(x.at(1))});
+  r.race_choices = j.value("race_choices", std::vector<std::string>{});
   if (r.solutions.size() != r.residuals.size() || r.solutions.size() != r.certified.size())
     throw std::invalid_argument("inconsistent solution lists");
   return r;
@@ -209,7 +211,7 @@ SubCheckpoint sub_in(const json& j) {
   for (auto& x : j.at("counters")) s.counters.push_back(counters_in(x));
   const json& r = j.at("race");
   s.race = {num(r.at("turn")), r.at("next").get<size_t>(), r.at("lead").get<size_t>(), num(r.at("target")),
-            r.at("winner").get<int>()};
+            r.at("winner").get<int>(), r.value("choices", std::vector<std::string>{})};
   if (s.searches.empty() || s.counters.size() != s.searches.size() || s.race.next >= s.searches.size() ||
       s.race.lead >= s.searches.size() || s.race.winner >= static_cast<int>(s.searches.size()))
     throw std::invalid_argument("inconsistent search state");
@@ -228,7 +230,7 @@ std::string to_json_text(const SubCheckpoint& s) {
     j["searches"] = searches;
     j["counters"] = counters;
     j["race"] = {{"turn", num(s.race.turn)}, {"next", s.race.next}, {"lead", s.race.lead},
-                 {"target", num(s.race.target)}, {"winner", s.race.winner}};
+                 {"target", num(s.race.target)}, {"winner", s.race.winner}, {"choices", s.race.choices}};
   }
   return j.dump();
 }

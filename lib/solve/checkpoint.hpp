@@ -22,6 +22,7 @@ struct RacePosition {
   size_t lead = 0;     // the candidate with the best projection this round
   double target = -1;  // the work the running candidate runs up to; < 0: not yet set
   int winner = -1;     // >= 0: the race is over; the winner's result is being refined
+  std::vector<std::string> choices;  // each choice of the lead, with its reasons (race.cpp)
 };
 
 struct SubCheckpoint {

@@ -1,6 +1,7 @@
 #include "solve/race.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 namespace linkbox::solve {
@@ -26,6 +27,16 @@ constexpr double kLeadMargin = 2;
 // papers/decisions/solve-driver.md).
 double projected(const Search& s) { return s.work() / std::max(s.tree_done(), 1e-9); }
 
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
+std::string describe(const Search& s) {
+  return "work " + number(s.work()) + ", " + number(s.tree_done()) + " of the tree, projected " + number(projected(s));
+}
+
 }  // namespace
 
 std::unique_ptr<Racer> make_racer(const formulate::Formulation& formulation, size_t i, const formulate::SubProblem& sub,
@@ -35,7 +46,7 @@ std::unique_ptr<Racer> make_racer(const formulate::Formulation& formulation, siz
 }
 
 Race::Race(std::vector<std::unique_ptr<Racer>> racers, Sharing* lending)
-    : racers_(std::move(racers)), at_{kFirstTurn, 0, 0, -1, -1}, lending_(lending) {}
+    : racers_(std::move(racers)), at_{kFirstTurn, 0, 0, -1, -1, {}}, lending_(lending) {}
 
 Race::~Race() {
   if (lending_) lending_->end_lending();
@@ -75,6 +86,8 @@ Search& Race::run_turn(int threads) {
     // the thread count.
     search.run(threads, at_.target);
   }
+  if (search.complete() && at_.winner < 0 && racers_.size() > 1)
+    at_.choices.push_back(name_of(at_.next) + " finished its search first (" + describe(search) + "): its boxes are the result");
   if (search.complete()) at_.winner = static_cast<int>(at_.next);
   return search;
 }
@@ -101,14 +114,23 @@ void Race::next_turn() {
 
 void Race::pick_lead() {
   const size_t held = at_.lead;
+  std::string why;
   for (size_t k = 0; k < racers_.size(); ++k) {
+    if (k == held) continue;
     const Search& challenger = *racers_[k]->search;
     const Search& holder = *racers_[at_.lead]->search;
-    if (k != held && challenger.tree_done() >= holder.tree_done() &&
-        projected(challenger) * kLeadMargin < projected(holder))
-      at_.lead = k;
+    const bool behind = challenger.tree_done() < holder.tree_done();
+    const bool cheaper = projected(challenger) * kLeadMargin < projected(holder);
+    why += "; " + name_of(k) + " " + describe(challenger) +
+           (behind ? ", behind on the tree" : cheaper ? ", 2x cheaper: takes the lead" : ", not 2x cheaper");
+    if (!behind && cheaper) at_.lead = k;
   }
+  at_.choices.push_back("turn " + number(at_.turn) + ": " + name_of(at_.lead) +
+                        (at_.lead == held ? " keeps the lead (" : " takes the lead from " + name_of(held) + " (") +
+                        name_of(held) + " " + describe(*racers_[held]->search) + why + ")");
 }
+
+std::string Race::name_of(size_t k) const { return racers_[k]->pruning.strategy.text(); }
 
 // First turn: every candidate gets the share (a costly first box of one should not delay
 // another that finishes at once: the rigid 6R's LP candidate).

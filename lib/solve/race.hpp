@@ -66,10 +66,12 @@ class Race {
   Racer& best();
   // Each candidate's strategy and work, the winner last; empty unless several raced and one won.
   std::vector<std::pair<std::string, double>> record();
+  const std::vector<std::string>& choices() const { return at_.choices; }
 
  private:
   void start_turn();
   void pick_lead();
+  std::string name_of(size_t k) const;
   double target_of(size_t k) const;
   std::vector<std::unique_ptr<Racer>> racers_;
   RacePosition at_;

@@ -47,6 +47,7 @@ struct SubResult {
   // When "auto" raced candidates: each one's name and work done (in boxes of propagation,
   // search.hpp), the winner last.
   std::vector<std::pair<std::string, double>> race;
+  std::vector<std::string> race_choices;  // and why the lead went where it did, turn by turn
 };
 
 struct CaseResult {

@@ -13,6 +13,7 @@ void Piece::merge(Piece&& o) {
   if (counters.empty()) counters.resize(o.counters.size());
   for (size_t k = 0; k < o.counters.size() && k < counters.size(); ++k) counters[k] += o.counters[k];
   if (race.empty()) race = std::move(o.race);
+  if (race_choices.empty()) race_choices = std::move(o.race_choices);
   if (strategy.empty()) strategy = std::move(o.strategy);
 }
 
@@ -70,7 +71,7 @@ Piece run_subtree(const formulate::Formulation& formulation, size_t i, const Run
     if (record && search.recorded() >= kRecordBatch) sharing->send_records(i, search.take_records());
     if (sharing->asked()) sharing->give(i, strategy, search);
   }
-  return {i, strategy, r.search.state(), r.ran->pruning.sequence->counters(), {}};
+  return {i, strategy, r.search.state(), r.ran->pruning.sequence->counters(), {}, {}};
 }
 
 SubResult finish_subproblem(const formulate::Formulation& formulation, size_t i, const RunOptions& options,
@@ -81,6 +82,7 @@ SubResult finish_subproblem(const formulate::Formulation& formulation, size_t i,
   describe(r.sub, i, s);
   s.bisect = to_string(r.bisector.rule());
   s.race = std::move(merged.race);
+  s.race_choices = std::move(merged.race_choices);
   const double work = r.search.work();
   finish(r.sub, r.settings.params, budget, *r.ran, r.bisector, r.search.result(), work, s);
   return s;

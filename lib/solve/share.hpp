@@ -24,6 +24,7 @@ struct Piece {
   SearchState state;
   std::vector<prune::Counters> counters;
   std::vector<std::pair<std::string, double>> race;  // as SubResult::race (the whole sub-problem's)
+  std::vector<std::string> race_choices;             // as SubResult::race_choices
   // Adds another piece of the same sub-problem and strategy: solutions, counts, work, pending.
   void merge(Piece&& other);
 };

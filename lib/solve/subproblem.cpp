@@ -125,8 +125,9 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
   deposit(false);  // after a win too: a checkpoint meanwhile resumes with the refinement
   Racer& ran = race.best();
   s.race = race.record();
+  s.race_choices = race.choices();
   if (gave) {
-    *piece = {i, ran.pruning.strategy, ran.search->state(), ran.pruning.sequence->counters(), s.race};
+    *piece = {i, ran.pruning.strategy, ran.search->state(), ran.pruning.sequence->counters(), s.race, s.race_choices};
     return false;
   }
   finish(sub, settings.params, run.budget, ran, bisector, ran.search->result(), ran.search->work(), s);

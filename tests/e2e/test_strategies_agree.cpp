@@ -96,6 +96,11 @@ TEST_CASE("a race on several threads picks the winner and boxes of the one-threa
     REQUIRE(one.subproblems.size() == 1);
     const auto& a = one.subproblems[0];
     REQUIRE(a.race.size() == 3);  // "auto" raced three candidates
+    // Why: every choice of the lead names each candidate; the last line, the winner.
+    REQUIRE(a.race_choices.size() >= 1);
+    for (size_t k = 0; k + 1 < a.race_choices.size(); ++k)
+      for (auto& [name, work] : a.race) CHECK(a.race_choices[k].find(name + " work") != std::string::npos);
+    CHECK(a.race_choices.back().rfind(a.race.back().first + " finished its search first", 0) == 0);
     for (int threads : {2, 3, 4}) {
       INFO(threads << " threads");
       o.threads = threads;
@@ -104,6 +109,7 @@ TEST_CASE("a race on several threads picks the winner and boxes of the one-threa
       const auto& b = many.subproblems[0];
       CHECK(a.strategy == b.strategy);
       CHECK(a.race == b.race);  // every turn ended at the same box: the same work, loser included
+      CHECK(a.race_choices == b.race_choices);
       CHECK(a.stats.processed == b.stats.processed);
       REQUIRE(a.solutions.size() == b.solutions.size());
       for (size_t k = 0; k < a.solutions.size(); ++k)
@@ -226,6 +232,7 @@ TEST_CASE("a race whose leader lends boxes ends as the one-process race", "[stra
     CHECK(lending.lent > 0);
     REQUIRE(one.race.size() == 3);
     CHECK(one.race == lent.race);
+    CHECK(one.race_choices == lent.race_choices);
     CHECK(one.strategy == lent.strategy);
     CHECK(one.stats.processed == lent.stats.processed);
     CHECK(one.stats.split == lent.stats.split);
