@@ -25,8 +25,8 @@ Key key_of(size_t member, const Box& piece) {
 
 // The arcs speak of every natural equation, each once: n - 1 of them, or more through a
 // coordinate subspace that the system has.
-bool equations_fit(const CurveMap& m, ArcSystems& systems, size_t equations, size_t unknowns) {
-  if (m.equations.size() != equations) return false;
+bool equations_fit(const CurveMap& m, ArcSystems& systems, size_t equations, size_t unknowns, bool links) {
+  if (m.equations.size() != equations || links) return false;
   for (size_t k = 0; k < equations; ++k)
     if (m.equations[k] != static_cast<int>(k)) return false;
   if (m.subspace_variable < 0) return equations + 1 == unknowns;
@@ -150,7 +150,7 @@ MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, con
   }
   const auto& sys = f.natural(m.charts[0]);
   ArcSystems systems(f);
-  if (!equations_fit(m, systems, sys.equations.size(), sys.unknowns.size())) {
+  if (!equations_fit(m, systems, sys.equations.size(), sys.unknowns.size(), !sys.links.empty())) {
     out.failures.push_back("the map's equations are not the natural system's n - 1, nor redundant through its subspace");
     return out;
   }

@@ -272,7 +272,8 @@ std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::
                                     const std::vector<std::uint64_t>& charts, const newton::NewtonOptions& options) {
   const auto& first = f.natural(charts.at(0));
   const size_t n = first.unknowns.size(), m = first.equations.size();
-  if (n < 2 || members.empty()) return std::nullopt;
+  // Links (y = f(a)) are constraints the arcs' polynomial systems leave out.
+  if (n < 2 || members.empty() || !first.links.empty()) return std::nullopt;
   ArcSystems systems(f);
   CurveMap map;
   map.charts = charts;

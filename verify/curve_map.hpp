@@ -108,8 +108,8 @@ bool piece_empty(const std::vector<model::Polynomial>& all, const std::shared_pt
                  const Box& piece);
 
 // The map of a cluster whose members (output variables, unwrapped) lie in `charts`; empty
-// when the natural system is neither n - 1 equations in n unknowns nor redundant through a
-// coordinate subspace (a mobile loop's closure needs an argument this map does not make), or
+// when the natural system has links (y = f(a)), or is neither n - 1 equations in n unknowns
+// nor redundant through a coordinate subspace (a mobile loop's closure needs an argument this map does not make), or
 // when arcs hold on too few of the members to state one.
 std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::vector<Box>& members,
                                     const std::vector<std::uint64_t>& charts, const newton::NewtonOptions& options);
