@@ -171,7 +171,8 @@ const std::optional<CoordinateSubspace>& ArcSystems::subspace(std::uint64_t char
 
 const std::shared_ptr<const model::CompiledSystem>& ArcSystems::for_exclusion(std::uint64_t chart,
                                                                              int subspace_variable) {
-  const auto& s = subspace_variable < 0 ? std::nullopt : subspace(chart);
+  if (subspace_variable < 0) return kept(chart, {});
+  const auto& s = subspace(chart);
   return kept(chart, s ? dropped_for(*s, 0) : std::vector<int>{});
 }
 
