@@ -211,9 +211,15 @@ SubCheckpoint sub_in(const json& j) {
   for (auto& x : j.at("counters")) s.counters.push_back(counters_in(x));
   const json& r = j.at("race");
   s.race = {num(r.at("turn")), r.at("next").get<size_t>(), r.at("lead").get<size_t>(), num(r.at("target")),
-            r.at("winner").get<int>(), r.value("choices", std::vector<std::string>{})};
+            r.at("winner").get<int>(), r.value("choices", std::vector<std::string>{}), {}};
+  if (r.contains("progress"))
+    for (auto& one : r.at("progress")) {
+      s.race.progress.emplace_back();
+      for (auto& point : one) s.race.progress.back().push_back({num(point.at(0)), num(point.at(1))});
+    }
   if (s.searches.empty() || s.counters.size() != s.searches.size() || s.race.next >= s.searches.size() ||
-      s.race.lead >= s.searches.size() || s.race.winner >= static_cast<int>(s.searches.size()))
+      s.race.lead >= s.searches.size() || s.race.winner >= static_cast<int>(s.searches.size()) ||
+      (!s.race.progress.empty() && s.race.progress.size() != s.searches.size()))
     throw std::invalid_argument("inconsistent search state");
   return s;
 }
@@ -231,6 +237,13 @@ std::string to_json_text(const SubCheckpoint& s) {
     j["counters"] = counters;
     j["race"] = {{"turn", num(s.race.turn)}, {"next", s.race.next}, {"lead", s.race.lead},
                  {"target", num(s.race.target)}, {"winner", s.race.winner}, {"choices", s.race.choices}};
+    json progress = json::array();
+    for (auto& one : s.race.progress) {
+      json points = json::array();
+      for (auto& [work, tree] : one) points.push_back({num(work), num(tree)});
+      progress.push_back(points);
+    }
+    j["race"]["progress"] = progress;
   }
   return j.dump();
 }

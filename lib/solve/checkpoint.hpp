@@ -23,6 +23,8 @@ struct RacePosition {
   double target = -1;  // the work the running candidate runs up to; < 0: not yet set
   int winner = -1;     // >= 0: the race is over; the winner's result is being refined
   std::vector<std::string> choices;  // each choice of the lead, with its reasons (race.cpp)
+  // Per candidate: its (work, share of the tree resolved) at each choice of the lead.
+  std::vector<std::vector<std::pair<double, double>>> progress;
 };
 
 struct SubCheckpoint {

@@ -16,8 +16,10 @@ constexpr double kFirstTurn = 4000;
 // box) and any candidate while the part of the tree left is the hard part. The lead passes
 // only to a candidate projected this many times cheaper than the one that holds it, so a
 // projection's noise does not hand it back and forth (each change wastes the turns before).
-// The candidate must also be at least as far along the tree as the holder: one that has run
-// less looks cheaper only because it has not reached the hard part yet.
+// The candidate must also be at least as far along the tree as the holder was after the same
+// work: one that has run less looks cheaper only because it has not reached the hard part
+// yet, while the holder's share now would ask of a candidate that runs an eighth of each turn
+// to be eight times as efficient.
 constexpr double kLeadMargin = 2;
 
 // Progress is the share of the search tree resolved (Search::tree_done), not of the volume:
@@ -33,6 +35,20 @@ std::string number(double x) {
   return text;
 }
 
+// A candidate's share of the tree resolved after `work`, interpolated between its recorded
+// (work, share) points; the last point holds beyond them.
+double tree_at(const std::vector<std::pair<double, double>>& points, double work) {
+  std::pair<double, double> before{0, 0};
+  for (auto& p : points) {
+    if (p.first >= work) {
+      const double span = p.first - before.first;
+      return span > 0 ? before.second + (p.second - before.second) * (work - before.first) / span : p.second;
+    }
+    before = p;
+  }
+  return before.second;
+}
+
 std::string describe(const Search& s) {
   return "work " + number(s.work()) + ", " + number(s.tree_done()) + " of the tree, projected " + number(projected(s));
 }
@@ -46,7 +62,7 @@ std::unique_ptr<Racer> make_racer(const formulate::Formulation& formulation, siz
 }
 
 Race::Race(std::vector<std::unique_ptr<Racer>> racers, Sharing* lending)
-    : racers_(std::move(racers)), at_{kFirstTurn, 0, 0, -1, -1, {}}, lending_(lending) {}
+    : racers_(std::move(racers)), at_{kFirstTurn, 0, 0, -1, -1, {}, {}}, lending_(lending) {}
 
 Race::~Race() {
   if (lending_) lending_->end_lending();
@@ -114,15 +130,18 @@ void Race::next_turn() {
 
 void Race::pick_lead() {
   const size_t held = at_.lead;
+  if (at_.progress.size() != racers_.size()) at_.progress.assign(racers_.size(), {});
+  for (size_t k = 0; k < racers_.size(); ++k)
+    at_.progress[k].push_back({racers_[k]->search->work(), racers_[k]->search->tree_done()});
   std::string why;
   for (size_t k = 0; k < racers_.size(); ++k) {
     if (k == held) continue;
     const Search& challenger = *racers_[k]->search;
     const Search& holder = *racers_[at_.lead]->search;
-    const bool behind = challenger.tree_done() < holder.tree_done();
+    const bool behind = challenger.tree_done() < tree_at(at_.progress[at_.lead], challenger.work());
     const bool cheaper = projected(challenger) * kLeadMargin < projected(holder);
     why += "; " + name_of(k) + " " + describe(challenger) +
-           (behind ? ", behind on the tree" : cheaper ? ", 2x cheaper: takes the lead" : ", not 2x cheaper");
+           (behind ? ", behind on the tree at equal work" : cheaper ? ", 2x cheaper: takes the lead" : ", not 2x cheaper");
     if (!behind && cheaper) at_.lead = k;
   }
   at_.choices.push_back("turn " + number(at_.turn) + ": " + name_of(at_.lead) +

@@ -180,11 +180,12 @@ TEST_CASE("a run stopped by a limit and resumed from its checkpoint ends with th
     const char* path;
     const char* stop;
     const char* resume;
+    bool raced;  // stopped while its candidates race
   };
   // A raced linkage (both candidates mid-way), and a spherical case of many sub-problems on
   // two threads (some finished, some under way, some not started).
-  for (const Case& c : {Case{"cases/linkages/6r-rigid.toml", "--max-boxes 700", ""},
-                        Case{"cases/spherical/four-loop.toml", "--max-boxes 3000 --threads 2", "--threads 2"}}) {
+  for (const Case& c : {Case{"cases/linkages/6r-rigid.toml", "--max-boxes 700", "", true},
+                        Case{"cases/spherical/four-loop.toml", "--max-boxes 3000 --threads 2", "--threads 2", false}}) {
     INFO(c.path);
     const std::string whole = tmp("whole.json"), part = tmp("part.json"), resumed = tmp("resumed.json"),
                       cp = tmp("run.checkpoint");
@@ -196,6 +197,17 @@ TEST_CASE("a run stopped by a limit and resumed from its checkpoint ends with th
     CHECK(p["pending_boxes"].get<long>() > 0);
     CHECK(p["volume_left"].get<double>() > 0);
     CHECK(p["volume_left"].get<double>() <= 1);
+    // A race's lead rule reads each candidate's past progress: the checkpoint keeps it.
+    bool raced = false;
+    const auto checkpoint = read(cp);
+    for (auto& sub : checkpoint["subproblems"]) {
+      const auto& race = sub["race"];
+      if (sub["phase"] != "searching" || sub["searches"].size() < 2 || race["choices"].empty()) continue;
+      raced = true;
+      REQUIRE(race["progress"].size() == sub["searches"].size());
+      for (auto& points : race["progress"]) CHECK(points.size() == race["choices"].size());
+    }
+    CHECK(raced == c.raced);
     REQUIRE(run("resume " + cp + " --quiet " + c.resume + " --json " + resumed).code == 0);
     const auto w = read(whole), r = read(resumed);
     CHECK(r["complete"] == true);
