@@ -154,19 +154,49 @@ newton::Arc symmetric_arc_from(const SymmetricLoop& loop, const Box& u, int para
   return a;
 }
 
-bool symmetric_piece_empty(const SymmetricLoop& loop, const Box& uv) {
-  const IVector d = loop.d_values(uv);
-  for (int i = 0; i < d.size(); ++i)
-    if (!zero_in(d(i))) return true;
-  const auto rows = loop.choose_rows(uv);
-  if (!rows) return false;
-  if (loop.excluded(uv, *rows)) return true;
-  if (!loop.on_subspace(uv, *rows)) return false;
+namespace {
+
+// What the piece's own tests decide before an arc is tried; `on_subspace`: every solution in
+// it has v = 0 (known from a piece that holds it, or proved here).
+bool reduced_empty(const SymmetricLoop& loop, const Box& uv) {
   for (int i = 3; i < 6; ++i)
     if (!zero_in(uv[i])) return true;
   const Box u = u_of(uv);
+  if (!not_identity(loop, u)) return false;
   const IVector r = loop.r_values(u);
-  return (!zero_in(r(0)) || !zero_in(r(1))) && not_identity(loop, u);
+  if (!zero_in(r(0)) || !zero_in(r(1))) return true;
+  // The mean-value form, tighter where U is narrow: R(U) within R(u^) + R_u(U) (U - u^).
+  Box mid = u;
+  for (auto& x : mid) x = Interval(median(x));
+  const IVector r0 = loop.r_values(mid);
+  const IMatrix j = loop.r_jacobian(u);
+  for (int i = 0; i < 2; ++i) {
+    Interval range = r0(i);
+    for (int k = 0; k < 3; ++k) range += j(i, k) * (u[k] - mid[k]);
+    if (!zero_in(range)) return true;
+  }
+  return false;
+}
+
+bool piece_empty(const SymmetricLoop& loop, const Box& uv, bool& on_subspace) {
+  if (!on_subspace) {
+    const IVector d = loop.d_values(uv);
+    for (int i = 0; i < d.size(); ++i)
+      if (!zero_in(d(i))) return true;
+    const auto rows = loop.choose_rows(uv);
+    if (!rows) return false;
+    if (loop.excluded(uv, *rows)) return true;
+    on_subspace = loop.on_subspace(uv, *rows);
+    if (!on_subspace) return false;
+  }
+  return reduced_empty(loop, uv);
+}
+
+}  // namespace
+
+bool symmetric_piece_empty(const SymmetricLoop& loop, const Box& uv) {
+  bool on_subspace = false;
+  return piece_empty(loop, uv, on_subspace);
 }
 
 namespace {
@@ -264,22 +294,70 @@ void join(const std::vector<Box>& members, const std::vector<std::vector<size_t>
 }
 
 // The recorded arc whose box holds the piece's U with a margin (so that an end of another
-// arc inside the piece is inside that box), when every solution in the piece has v = 0: the
-// piece's solutions are then that arc's points over U.
-std::optional<size_t> covering_arc(const SymmetricLoop& loop, const CurveMap& map, const Box& uv) {
+// arc inside the piece is inside that box); with every solution in the piece at v = 0, the
+// piece's solutions are that arc's points over U.
+std::optional<size_t> covering_arc(const CurveMap& map, const Box& uv) {
   Box u = u_of(uv);
   for (auto& x : u) {
     const double margin = std::ldexp(width_up(x), -10);
     x = x + Interval(-margin, margin);
   }
-  for (size_t a = map.arcs.size(); a-- > 0;) {
-    if (!contains(map.arcs[a].arc.box, u)) continue;
-    const auto rows = loop.choose_rows(uv);
-    if (rows && loop.on_subspace(uv, *rows)) return a;
-    return std::nullopt;
-  }
+  for (size_t a = map.arcs.size(); a-- > 0;)
+    if (contains(map.arcs[a].arc.box, u)) return a;
   return std::nullopt;
 }
+
+// One member's pieces, added to the map as they are decided.
+struct MemberWalk {
+  const SymmetricLoop& loop;
+  const std::vector<Box>& members;
+  size_t k;
+  CurveMap& map;
+  std::vector<std::vector<size_t>>& covered;  // per arc: the members whose pieces it covers
+  bool unresolved = false;
+
+  void walk(const Box& uv, bool on_subspace, int depth) {
+    // (u, v) pieces cover more than the member: what lies outside it needs no proof.
+    if (!overlaps(loop.to_output(uv), members[k]) || covered_by_arc(uv, on_subspace)) return;
+    // Emptiness before a new arc: a box beside the curve that the search could not empty holds
+    // no arc, though an arc test may succeed in a box grown from it toward the curve.
+    if (piece_empty(loop, uv, on_subspace) || (on_subspace && new_arc(uv))) return;
+    if (depth >= kSymmetricDepth) {
+      map.unresolved.emplace_back(k, uv);
+      unresolved = true;
+      return;
+    }
+    auto [lo, hi] = bisect(uv, on_subspace ? widest_dimension(u_of(uv)) : widest_dimension(uv));
+    walk(lo, on_subspace, depth + 1);
+    walk(hi, on_subspace, depth + 1);
+  }
+
+  // A recorded arc's box holds the piece's U and every solution in the piece has v = 0 (tried
+  // first with that arc's rows, which near it usually pass): the piece's solutions are the
+  // arc's points over U.
+  bool covered_by_arc(const Box& uv, bool on_subspace) {
+    const auto a = covering_arc(map, uv);
+    if (!a) return false;
+    if (!on_subspace && !loop.on_subspace(uv, {map.arcs[*a].v_preconditioner})) {
+      const auto rows = loop.choose_rows(uv);
+      if (!rows || !loop.on_subspace(uv, *rows)) return false;
+    }
+    covered[*a].push_back(k);
+    return true;
+  }
+
+  bool new_arc(const Box& uv) {
+    auto a = certify_symmetric(loop, uv, k);
+    if (!a) return false;
+    // The arc's box holds the piece's U, and every solution in it lies on the arc: a piece
+    // whose U the arc misses holds none.
+    if (!arc_misses(loop, a->arc, u_of(uv), members[k])) {
+      map.arcs.push_back(std::move(*a));
+      covered.push_back({k});
+    }
+    return true;
+  }
+};
 
 }  // namespace
 
@@ -290,34 +368,9 @@ std::optional<CurveMap> map_symmetric(const SymmetricLoop& loop, const std::vect
   std::vector<std::vector<size_t>> covered;  // per arc: the members whose pieces it covers
   size_t unresolved_members = 0;
   for (size_t k = 0; k < members.size(); ++k) {
-    bool unresolved = false;
-    walk_symmetric(
-        loop.to_uv(members[k]),
-        [&](const Box& piece) {
-          if (const auto a = covering_arc(loop, map, piece)) {
-            covered[*a].push_back(k);
-            return true;
-          }
-          auto a = certify_symmetric(loop, piece, k);
-          if (!a) return false;
-          // The arc's box holds the piece's U, and every solution in it lies on the arc: a
-          // piece whose U the arc misses holds none.
-          if (!arc_misses(loop, a->arc, u_of(piece), members[k])) {
-            map.arcs.push_back(std::move(*a));
-            covered.push_back({k});
-          }
-          return true;
-        },
-        // (u, v) pieces cover more than the member: what lies outside it needs no proof.
-        [&](const Box& piece) {
-          return !overlaps(loop.to_output(piece), members[k]) || symmetric_piece_empty(loop, piece);
-        },
-        [&](const Box& piece, PieceKind kind) {
-          if (kind != PieceKind::unresolved) return;
-          map.unresolved.emplace_back(k, piece);
-          unresolved = true;
-        });
-    unresolved_members += unresolved;
+    MemberWalk w{loop, members, k, map, covered};
+    w.walk(loop.to_uv(members[k]), false, 0);
+    unresolved_members += w.unresolved;
     if (k + 1 >= 8 && 2 * unresolved_members > k + 1) return std::nullopt;
   }
   if (map.arcs.empty()) return map.unresolved.empty() ? std::optional(map) : std::nullopt;

@@ -1,7 +1,6 @@
 #pragma once
 // Certified maps of a symmetric six-joint loop's curve clusters (verify/symmetric_loop.hpp).
-// Each member is carried to (u, v) and covered by pieces (bisected at the widest side): on
-// each, either
+// Each member is carried to (u, v) and covered by pieces: on each, either
 //  - an arc: the uniqueness test in v holds over the arc's box U x V (so every solution there
 //    has v = 0), q_0 stays inside (-1, 1) on U, and a parametric Krawczyk test on R over
 //    U shows that R's zero set in U is exactly one arc, a graph over one side of U: then the
@@ -10,6 +9,9 @@
 //    holds its U (with a margin): the piece's solutions are that arc's points; or
 //  - empty: an entry of D misses 0 over the piece, or the uniqueness test holds and V misses
 //    0, or it holds and R misses 0 on U while T(u) = I is excluded there.
+// Pieces are bisected at their widest side until the uniqueness test holds, then at their
+// widest side in u only: what the test proves of a piece holds for its parts, and its
+// solutions all lie at v = 0, so only U still needs to narrow.
 // Arcs are joined as in curve_map.hpp (an end inside another arc's box), in u, where they are
 // the zero sets of one function R.
 #include "verify/curve_map.hpp"
@@ -20,13 +22,13 @@ namespace linkbox::verify {
 // The width (in the search's variables) a member should have before it is mapped, what
 // `--narrow` should be given: wider pieces neither exclude nor certify, so the search's
 // contractors narrow the boxes first (solve/narrow.hpp).
-constexpr double kSymmetricPiece = 0.005;
+constexpr double kSymmetricPiece = 0.01;
 // Members wider than this (output variables) are not mapped: their pieces would not resolve
 // within the bisection depth.
-constexpr double kSymmetricMember = 0.06;
+constexpr double kSymmetricMember = 0.2;
 
 // Bisection depth of a member's pieces.
-constexpr int kSymmetricDepth = 14;
+constexpr int kSymmetricDepth = 18;
 
 // The map of a cluster (members in output variables, unwrapped); empty when too few members
 // hold arcs to state one. A map with no arcs and no unresolved pieces proves that the cluster
@@ -40,18 +42,5 @@ newton::Arc symmetric_arc_from(const SymmetricLoop& loop, const Box& u, int para
 
 // Whether a piece (u, v) provably holds no solution (recomputed by the checker).
 bool symmetric_piece_empty(const SymmetricLoop& loop, const Box& uv_piece);
-
-// Walks a member's pieces as map_symmetric does; `is_arc` and `is_empty` decide each piece.
-template <class IsArc, class IsEmpty, class Leaf>
-void walk_symmetric(const Box& uv, IsArc&& is_arc, IsEmpty&& is_empty, Leaf&& leaf, int depth = 0) {
-  // Emptiness first: a box beside the curve that the search could not empty holds no arc,
-  // though an arc test may succeed in a box grown from it toward the curve.
-  if (is_empty(uv)) return leaf(uv, PieceKind::empty);
-  if (is_arc(uv)) return leaf(uv, PieceKind::arc);
-  if (depth >= kSymmetricDepth) return leaf(uv, PieceKind::unresolved);
-  auto [lo, hi] = bisect(uv, widest_dimension(uv));
-  walk_symmetric(lo, is_arc, is_empty, leaf, depth + 1);
-  walk_symmetric(hi, is_arc, is_empty, leaf, depth + 1);
-}
 
 }  // namespace linkbox::verify
