@@ -16,14 +16,13 @@ constexpr double kFirstTurn = 4000;
 // box) and any candidate while the part of the tree left is the hard part. The lead passes
 // only to a candidate projected this many times cheaper than the one that holds it, so a
 // projection's noise does not hand it back and forth (each change wastes the turns before).
-// The candidate must also be further along the tree than the holder was after the same work:
-// one that has run less looks cheaper only because it has not reached the hard part yet (on a
-// stretch where neither advances, it is no better), while the holder's share now would ask of
-// a candidate that runs an eighth of each turn to be eight times as efficient.
+// The candidate must also be at least as far along the tree as the holder was after the same
+// work: one that has run less looks cheaper only because it has not reached the hard part
+// yet, while the holder's share now would ask of a candidate that runs an eighth of each turn
+// to be eight times as efficient. Of several, the one furthest ahead: one that is merely level
+// with the holder (both crawling through the same hard part) is projected cheap only for its
+// smaller work.
 constexpr double kLeadMargin = 2;
-// "Further along": by this factor, so that two searches crawling through the same hard part
-// (shares apart in the fifth digit) do not count as one ahead of the other.
-constexpr double kAhead = 1.01;
 
 // Progress is the share of the search tree resolved (Search::tree_done), not of the volume:
 // contraction removes most of the volume in the first boxes, while the work gathers around
@@ -138,16 +137,19 @@ void Race::pick_lead() {
     at_.progress[k].push_back({racers_[k]->search->work(), racers_[k]->search->tree_done()});
   std::string why;
   const Search& holder = *racers_[held]->search;
+  double best_lead = -1;  // how far the chosen challenger is ahead of the holder at equal work
   for (size_t k = 0; k < racers_.size(); ++k) {
     if (k == held) continue;
     const Search& challenger = *racers_[k]->search;
-    const bool ahead = challenger.tree_done() > kAhead * tree_at(at_.progress[held], challenger.work());
+    const double ahead = challenger.tree_done() - tree_at(at_.progress[held], challenger.work());
     const bool cheaper = projected(challenger) * kLeadMargin < projected(holder);
     why += "; " + name_of(k) + " " + describe(challenger) +
-           (!ahead ? ", not ahead on the tree at equal work" : cheaper ? ", ahead and 2x cheaper" : ", not 2x cheaper");
-    // Of several that qualify, the cheapest: the choice does not depend on their order.
-    if (ahead && cheaper && (at_.lead == held || projected(challenger) < projected(*racers_[at_.lead]->search)))
+           (ahead < 0 ? ", behind on the tree at equal work" : cheaper ? ", 2x cheaper" : ", not 2x cheaper");
+    // Of several that qualify, the one furthest ahead: the choice does not depend on their order.
+    if (ahead >= 0 && cheaper && ahead > best_lead) {
+      best_lead = ahead;
       at_.lead = k;
+    }
   }
   at_.choices.push_back("turn " + number(at_.turn) + ": " + name_of(at_.lead) +
                         (at_.lead == held ? " keeps the lead (" : " takes the lead from " + name_of(held) + " (") +
