@@ -1,5 +1,7 @@
 #include "solve/race.hpp"
 
+#include "solve/lead.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
@@ -12,47 +14,17 @@ namespace {
 constexpr double kRaceShare = 0.125;
 constexpr double kFirstTurn = 4000;
 
-// The projection flatters the LP candidate early on (its first LPs remove whole slabs of the
-// box) and any candidate while the part of the tree left is the hard part. The lead passes
-// only to a candidate projected this many times cheaper than the one that holds it, so a
-// projection's noise does not hand it back and forth (each change wastes the turns before).
-// The candidate must also be at least as far along the tree as the holder was after the same
-// work: one that has run less looks cheaper only because it has not reached the hard part
-// yet, while the holder's share now would ask of a candidate that runs an eighth of each turn
-// to be eight times as efficient. Of several, the one furthest ahead: one that is merely level
-// with the holder (both crawling through the same hard part) is projected cheap only for its
-// smaller work.
-constexpr double kLeadMargin = 2;
-
-// Progress is the share of the search tree resolved (Search::tree_done), not of the volume:
-// contraction removes most of the volume in the first boxes, while the work gathers around
-// the solution set, where little volume is left. On volume, a propagation search that had
-// cleared nearly all of a curve's neighbourhood looked nearly done and kept the lead (see
-// papers/decisions/solve-driver.md).
-double projected(const Search& s) { return s.work() / std::max(s.tree_done(), 1e-9); }
-
 std::string number(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", x);
   return text;
 }
 
-// A candidate's share of the tree resolved after `work`, interpolated between its recorded
-// (work, share) points; the last point holds beyond them.
-double tree_at(const std::vector<std::pair<double, double>>& points, double work) {
-  std::pair<double, double> before{0, 0};
-  for (auto& p : points) {
-    if (p.first >= work) {
-      const double span = p.first - before.first;
-      return span > 0 ? before.second + (p.second - before.second) * (work - before.first) / span : p.second;
-    }
-    before = p;
-  }
-  return before.second;
-}
+Standing standing(const Search& s) { return {s.work(), s.tree_done()}; }
 
 std::string describe(const Search& s) {
-  return "work " + number(s.work()) + ", " + number(s.tree_done()) + " of the tree, projected " + number(projected(s));
+  return "work " + number(s.work()) + ", " + number(s.tree_done()) + " of the tree, projected " +
+         number(projected(standing(s)));
 }
 
 }  // namespace
@@ -135,21 +107,16 @@ void Race::pick_lead() {
   if (at_.progress.size() != racers_.size()) at_.progress.assign(racers_.size(), {});
   for (size_t k = 0; k < racers_.size(); ++k)
     at_.progress[k].push_back({racers_[k]->search->work(), racers_[k]->search->tree_done()});
+  std::vector<Standing> now;
+  for (auto& r : racers_) now.push_back(standing(*r->search));
+  at_.lead = choose_lead(held, now, at_.progress[held]);
   std::string why;
-  const Search& holder = *racers_[held]->search;
-  double best_lead = -1;  // how far the chosen challenger is ahead of the holder at equal work
   for (size_t k = 0; k < racers_.size(); ++k) {
     if (k == held) continue;
-    const Search& challenger = *racers_[k]->search;
-    const double ahead = challenger.tree_done() - tree_at(at_.progress[held], challenger.work());
-    const bool cheaper = projected(challenger) * kLeadMargin < projected(holder);
-    why += "; " + name_of(k) + " " + describe(challenger) +
-           (ahead < 0 ? ", behind on the tree at equal work" : cheaper ? ", 2x cheaper" : ", not 2x cheaper");
-    // Of several that qualify, the one furthest ahead: the choice does not depend on their order.
-    if (ahead >= 0 && cheaper && ahead > best_lead) {
-      best_lead = ahead;
-      at_.lead = k;
-    }
+    why += "; " + name_of(k) + " " + describe(*racers_[k]->search) +
+           (ahead_of(at_.progress[held], now[k]) < 0 ? ", behind on the tree at equal work"
+            : cheaper(now[held], now[k])             ? ", 2x cheaper"
+                                                     : ", not 2x cheaper");
   }
   at_.choices.push_back("turn " + number(at_.turn) + ": " + name_of(at_.lead) +
                         (at_.lead == held ? " keeps the lead (" : " takes the lead from " + name_of(held) + " (") +

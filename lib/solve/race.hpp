@@ -2,7 +2,7 @@
 // "auto" on a system with several candidates: their searches advance in turns, measured in
 // work (boxes of propagation, search.hpp), until one finishes; its boxes are the result, as if
 // it had run alone. Turns double. After a first turn each, the candidate whose projected total
-// work (work / share of the search tree resolved) is clearly smaller (race.cpp) gets the turn
+// work (work / share of the search tree resolved) is clearly smaller (lead.hpp) gets the turn
 // and the others a share of it, so a wrong projection costs a bounded factor. A turn ends at the box where a
 // one-thread depth-first search would end it, whatever the thread count (Search::run), so the
 // race is deterministic. One candidate is a race of one: its search runs to the end.
