@@ -104,11 +104,10 @@ void Race::next_turn() {
 
 void Race::pick_lead() {
   const size_t held = at_.lead;
-  if (at_.progress.size() != racers_.size()) at_.progress.assign(racers_.size(), {});
-  for (size_t k = 0; k < racers_.size(); ++k)
-    at_.progress[k].push_back({racers_[k]->search->work(), racers_[k]->search->tree_done()});
   std::vector<Standing> now;
   for (auto& r : racers_) now.push_back(standing(*r->search));
+  if (at_.progress.size() != racers_.size()) at_.progress.assign(racers_.size(), {});
+  for (size_t k = 0; k < now.size(); ++k) at_.progress[k].push_back({now[k].work, now[k].tree});
   at_.lead = choose_lead(held, now, at_.progress[held]);
   std::string why;
   for (size_t k = 0; k < racers_.size(); ++k) {
