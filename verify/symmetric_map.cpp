@@ -156,8 +156,8 @@ newton::Arc symmetric_arc_from(const SymmetricLoop& loop, const Box& u, int para
 
 namespace {
 
-// What the piece's own tests decide before an arc is tried; `on_subspace`: every solution in
-// it has v = 0 (known from a piece that holds it, or proved here).
+// Whether a piece whose solutions all lie at v = 0 holds none: V misses 0, or R misses 0 on U
+// while T(u) = I is excluded there.
 bool reduced_empty(const SymmetricLoop& loop, const Box& uv) {
   for (int i = 3; i < 6; ++i)
     if (!zero_in(uv[i])) return true;
@@ -178,6 +178,8 @@ bool reduced_empty(const SymmetricLoop& loop, const Box& uv) {
   return false;
 }
 
+// Whether the piece provably holds no solution; `on_subspace`: every solution in it has v = 0
+// (known from a piece that holds it, or proved here on the way).
 bool piece_empty(const SymmetricLoop& loop, const Box& uv, bool& on_subspace) {
   if (!on_subspace) {
     const IVector d = loop.d_values(uv);
@@ -192,14 +194,6 @@ bool piece_empty(const SymmetricLoop& loop, const Box& uv, bool& on_subspace) {
   return reduced_empty(loop, uv);
 }
 
-}  // namespace
-
-bool symmetric_piece_empty(const SymmetricLoop& loop, const Box& uv) {
-  bool on_subspace = false;
-  return piece_empty(loop, uv, on_subspace);
-}
-
-namespace {
 
 // Tries an arc through the piece: parameters in order of the curve's speed across the piece,
 // Y grown from the piece until the Krawczyk image falls inside it.

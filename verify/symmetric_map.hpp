@@ -40,7 +40,4 @@ std::optional<CurveMap> map_symmetric(const SymmetricLoop& loop, const std::vect
 newton::Arc symmetric_arc_from(const SymmetricLoop& loop, const Box& u, int parameter, const Eigen::MatrixXd& c,
                                const Box& uv_piece, const SymmetricLoop::RowChoice& rows);
 
-// Whether a piece (u, v) provably holds no solution (recomputed by the checker).
-bool symmetric_piece_empty(const SymmetricLoop& loop, const Box& uv_piece);
-
 }  // namespace linkbox::verify
