@@ -200,12 +200,13 @@ TEST_CASE("a run stopped by a limit and resumed from its checkpoint ends with th
     // A race's lead rule reads each candidate's past progress: the checkpoint keeps it.
     bool raced = false;
     const auto checkpoint = read(cp);
-    for (auto& sub : checkpoint["subproblems"]) {
-      const auto& race = sub["race"];
-      if (sub["phase"] != "searching" || sub["searches"].size() < 2 || race["choices"].empty()) continue;
+    for (auto& sub : checkpoint.at("subproblems")) {
+      if (sub.at("phase") != "searching" || sub.at("searches").size() < 2) continue;
+      const auto& race = sub.at("race");
+      if (race.at("choices").empty()) continue;
       raced = true;
-      REQUIRE(race["progress"].size() == sub["searches"].size());
-      for (auto& points : race["progress"]) CHECK(points.size() == race["choices"].size());
+      REQUIRE(race.at("progress").size() == sub.at("searches").size());
+      for (auto& points : race.at("progress")) CHECK(points.size() == race.at("choices").size());
     }
     CHECK(raced == c.raced);
     REQUIRE(run("resume " + cp + " --quiet " + c.resume + " --json " + resumed).code == 0);
