@@ -1,5 +1,7 @@
 #include "model/link.hpp"
 
+#include "interval/fast_exp.hpp"
+#include "interval/fast_trig.hpp"
 #include "interval/rigorous.hpp"
 
 #include <cfenv>
@@ -33,16 +35,47 @@ bool clip(Interval& x, double lo, double hi) {
 
 Interval point(double v) { return Interval(v); }
 
+// exp, log, sin and cos in double arithmetic (fast_exp, fast_trig: the same enclosures a few
+// ulps wider, without multi-precision), where those answer; MPFI otherwise. These run in the
+// caller's rounding mode: the fast ones set their own, MPFI's run inside Nearest.
+Interval slow(const FastInterval& x) { return Interval(x.lower(), x.upper()); }
+
+Interval fast_or_mpfi(const Interval& x, bool (*fast)(const FastInterval&, FastInterval&),
+                      Interval (*mpfi)(const Interval&)) {
+  {
+    RoundingGuard guard;
+    FastInterval r;
+    if (fast(FastInterval(x.lower(), x.upper()), r)) return slow(r);
+  }
+  Nearest nearest;
+  return mpfi(x);
+}
+
+Interval exp(const Interval& x) { return fast_or_mpfi(x, fast_exp::exp, rigorous::exp); }
+Interval log(const Interval& x) { return fast_or_mpfi(x, fast_exp::log, rigorous::log); }
+
+fast_trig::SinCos sin_cos(const Interval& x) {
+  RoundingGuard guard;
+  return fast_trig::sin_cos(FastInterval(x.lower(), x.upper()));
+}
+
+Interval sin(const Interval& x) { return slow(sin_cos(x).sin); }
+Interval cos(const Interval& x) { return slow(sin_cos(x).cos); }
+
+const Interval& half_pi() {
+  static const Interval h = rigorous::pi() / Interval(2.0);
+  return h;
+}
+
 // {v : f(v) in y} enclosed, for f monotone (cosh: |v|); false when empty. Inside Nearest.
 bool preimage(Elementary f, Interval y, Interval& out) {
-  const Interval half_pi = rigorous::pi() / Interval(2.0);
+  const Interval& half_pi = model::half_pi();
   switch (f) {
     case Elementary::exp:
       if (y.upper() <= 0) return false;
-      out = Interval(y.lower() > 0 ? rigorous::log(point(y.lower())).lower() : -kInf,
-                     rigorous::log(point(y.upper())).upper());
+      out = Interval(y.lower() > 0 ? log(point(y.lower())).lower() : -kInf, log(point(y.upper())).upper());
       return true;
-    case Elementary::log: out = rigorous::exp(y); return true;
+    case Elementary::log: out = exp(y); return true;
     case Elementary::sinh: out = rigorous::asinh(y); return true;
     case Elementary::cosh:  // |v| = acosh(y), y >= 1
       if (!clip(y, 1.0, kInf)) return false;
@@ -60,11 +93,11 @@ bool preimage(Elementary f, Interval y, Interval& out) {
       return true;
     case Elementary::asin:  // v = sin(w), w in [-pi/2, pi/2] (enclosed outward: sin's range is a superset)
       if (!clip(y, -half_pi.upper(), half_pi.upper())) return false;
-      out = rigorous::sin(y);
+      out = sin(y);
       return true;
     case Elementary::acos:  // v = cos(w), w in [0, pi]
       if (!clip(y, 0.0, 2 * half_pi.upper())) return false;
-      out = rigorous::cos(y);
+      out = cos(y);
       return true;
     case Elementary::sin:
     case Elementary::cos: out = kWhole; return true;  // not monotone: nothing learnt
@@ -125,28 +158,35 @@ bool within_domain(Elementary f, const Interval& x) {
 Interval image(Elementary f, const Interval& x) {
   Interval a = x;
   if (!to_domain(f, a)) throw std::domain_error(std::string(to_string(f)) + ": argument outside the domain");
+  switch (f) {
+    case Elementary::exp: return exp(a);
+    case Elementary::log: return a.lower() > 0 ? log(a) : Interval(-kInf, log(point(a.upper())).upper());
+    case Elementary::sin: return sin(a);
+    case Elementary::cos: return cos(a);
+    default: break;
+  }
   Nearest nearest;
   switch (f) {
-    case Elementary::exp: return rigorous::exp(a);
-    case Elementary::log:
-      return a.lower() > 0 ? rigorous::log(a) : Interval(-kInf, rigorous::log(point(a.upper())).upper());
     case Elementary::sinh: return rigorous::sinh(a);
     case Elementary::cosh: return rigorous::cosh(a);
     case Elementary::tanh: return rigorous::tanh(a);
     case Elementary::asin: return rigorous::asin(a);
     case Elementary::acos: return rigorous::acos(a);
     case Elementary::atan: return rigorous::atan(a);
-    case Elementary::sin: return rigorous::sin(a);
-    case Elementary::cos: return rigorous::cos(a);
+    default: return kWhole;
   }
-  return kWhole;
 }
 
 Interval derivative(Elementary f, const Interval& x) {
   const Interval one(1.0);
+  switch (f) {
+    case Elementary::exp: return exp(x);
+    case Elementary::sin: return cos(x);
+    case Elementary::cos: return -sin(x);
+    default: break;
+  }
   Nearest nearest;
   switch (f) {
-    case Elementary::exp: return rigorous::exp(x);
     case Elementary::log: return x.lower() > 0 ? one / x : kWhole;
     case Elementary::sinh: return rigorous::cosh(x);
     case Elementary::cosh: return rigorous::sinh(x);
@@ -162,10 +202,8 @@ Interval derivative(Elementary f, const Interval& x) {
       return f == Elementary::asin ? d : -d;
     }
     case Elementary::atan: return one / (one + boost::numeric::square(x));
-    case Elementary::sin: return rigorous::cos(x);
-    case Elementary::cos: return -rigorous::sin(x);
+    default: return kWhole;
   }
-  return kWhole;
 }
 
 Interval row_value(const Link& l, const Interval& y, const Interval& a) {
