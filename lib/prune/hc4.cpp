@@ -1,5 +1,6 @@
 #include "prune/hc4.hpp"
 
+#include "interval/root.hpp"
 #include "prune/links.hpp"
 
 #include <cmath>
@@ -11,22 +12,22 @@ namespace {
 FastInterval power(const FastInterval& x, int e) { return e == 1 ? x : boost::numeric::pow(x, e); }
 
 // Narrows x to {v in x : v^e in p}; false when that set is empty. Any e >= 1: the real
-// e-th roots are enclosed by Boost's nth_root (an interval Newton iteration, outward rounded).
+// e-th roots are enclosed by root::nth_root (outward rounded).
 bool project_power(Interval& x, const FastInterval& p, int e) {
   double lo = x.lower(), hi = x.upper();
   if (e == 1) {
     lo = std::max(lo, p.lower());
     hi = std::min(hi, p.upper());
   } else if (!std::isfinite(p.lower()) || !std::isfinite(p.upper())) {
-    return true;  // nth_root's iteration needs finite bounds; nothing to learn anyway
+    return true;  // nth_root needs finite bounds; nothing to learn anyway
   } else if (e % 2 == 1) {
-    const FastInterval r = boost::numeric::nth_root(p, e);  // odd: one increasing branch
+    const FastInterval r = root::nth_root(p, e);  // odd: one increasing branch
     lo = std::max(lo, r.lower());
     hi = std::min(hi, r.upper());
   } else {
     if (p.upper() < 0) return false;
     const FastInterval q(std::max(0.0, p.lower()), p.upper());
-    const FastInterval r = e == 2 ? sqrt(q) : boost::numeric::nth_root(q, e);
+    const FastInterval r = e == 2 ? sqrt(q) : root::nth_root(q, e);
     // v in [-r.hi, -r.lo] or [r.lo, r.hi]: keep the hull of what meets x.
     const double in_lo = r.lower(), out = r.upper();
     double nlo = kInf, nhi = -kInf;
@@ -56,7 +57,7 @@ Hc4::Hc4(const std::vector<model::Polynomial>& equations, Arith arith, const std
   }
   // A term of p factors: p products and two sums forward, and per factor p products and a
   // projection backward, each about two interval products; a power adds its pow() and its
-  // root (a square root; for a higher power nth_root's Newton iteration, the costliest part).
+  // root (a square root; for a higher power, nth_root's libm guess and its checked steps).
   for (auto& terms : equations_)
     for (auto& t : terms) {
       const double p = static_cast<double>(t.powers.size());
