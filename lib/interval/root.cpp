@@ -23,7 +23,11 @@ bool below(double x, int e, double& out) {
     if (r == 0 || ++steps > kSteps) return false;
     r = std::nextafter(r, 0.0);
   }
-  for (double n = std::nextafter(r, kInf); steps++ < kSteps && power(n, e).upper() <= x; n = std::nextafter(n, kInf)) r = n;
+  while (steps++ < kSteps) {  // up while the next double is still proved below the root
+    const double n = std::nextafter(r, kInf);
+    if (power(n, e).upper() > x) break;
+    r = n;
+  }
   out = r;
   return true;
 }
@@ -37,8 +41,11 @@ bool above(double x, int e, double& out) {
     if (++steps > kSteps) return false;
     r = std::nextafter(r, kInf);
   }
-  for (double n = std::nextafter(r, 0.0); r > 0 && steps++ < kSteps && power(n, e).lower() >= x; n = std::nextafter(n, 0.0))
+  while (r > 0 && steps++ < kSteps) {  // down while the next double is still proved above it
+    const double n = std::nextafter(r, 0.0);
+    if (power(n, e).lower() < x) break;
     r = n;
+  }
   out = r;
   return true;
 }
