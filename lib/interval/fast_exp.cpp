@@ -62,7 +62,9 @@ F remainder(const F& r, int n, const F& c) {
 // exp of the double x, |x| <= kLargest: x = k ln2 + r, exp(x) = 2^k exp(r).
 F exp_at(double x) {
   const Constants& c = constants();
-  const double k = std::nearbyint(x / 0.6931471805599453);
+  // floor, not nearbyint: nearbyint follows the rounding mode (upward here), which would let
+  // |r| reach ln 2 instead of ln2/2.
+  const double k = std::floor(x / 0.6931471805599453 + 0.5);
   const F r = (F(x) - F(k) * c.ln2_high) - k * c.ln2_low;
   F s(0.0);
   for (int i = kExpTerms - 1; i >= 0; --i) s = s * r + c.inverse_factorial[i];
