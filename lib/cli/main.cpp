@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <malloc.h>
 #include <sstream>
 #include <unistd.h>
 
@@ -167,10 +168,19 @@ void single_threaded_blas(char** argv) {
   execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
 }
 
+// glibc gives the heap's free top back to the system once 128 KiB of it are free, and serves
+// blocks from 128 KiB up by mmap: an LP contractor's per-box allocations then move the top up
+// and down, a system call and fresh page faults each time. Keeping the heap avoids both.
+void keep_heap() {
+  mallopt(M_MMAP_THRESHOLD, 16 << 20);
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   single_threaded_blas(argv);
+  keep_heap();
   const std::unique_ptr<cli::RunMode> mode = cli::start_run_mode(&argc, &argv);
   CLI::App app{"linkbox: verified position analysis of linkages by interval branch-and-prune", "linkbox"};
   app.set_version_flag("-V,--version", "linkbox " LINKBOX_VERSION);
