@@ -306,14 +306,14 @@ class Checker {
     const std::vector<Box> boxes = members_of(k);
     const auto exists = [&](std::uint64_t chart) { return chart_exists(chart); };
     MapCheck mc = boxes.size() == k.c.at("members").size() ? check_map(k.c.at("map"), f_, boxes, exists)
-                                                            : MapCheck{{"members missing"}, false, 0, 0, 0, {}};
+                                                            : MapCheck{{"members missing"}, false, 0, 0, 0, 0, 0, {}};
     out_.checked += mc.arcs;
     for (auto& why : mc.failures) out_.failures.push_back(k.where + ": its map: " + why);
     if (mc.failures.empty()) reproved_maps_[k.index] = mc.map;
     if (mc.proved) {
       proved_map_data_.push_back(std::move(mc.map));  // as re-proved, never as written
       proved_maps_.push_back(k.index);
-      closed_curves_ += mc.closed, open_arcs_ += mc.open;
+      closed_curves_ += mc.closed, open_arcs_ += mc.open, branches_ += mc.branches, singular_points_ += mc.singular;
     }
   }
 
@@ -464,11 +464,11 @@ class Checker {
   }
 
   void check_map_counts() {
-    if (j_.contains("verification") && j_.at("verification").contains("map")) {
-      const json& m = j_.at("verification").at("map");
-      if (m.value("closed_curves", -1) != closed_curves_ || m.value("open_arcs", -1) != open_arcs_)
-        out_.failures.push_back("the map's counts of closed curves and open arcs are not those its proved clusters give");
-    }
+    if (!j_.contains("verification") || !j_.at("verification").contains("map")) return;
+    const json& m = j_.at("verification").at("map");
+    if (m.value("closed_curves", -1) != closed_curves_ || m.value("open_arcs", -1) != open_arcs_ ||
+        m.value("branches", 0) != branches_ || m.value("singular_points", 0) != singular_points_)
+      out_.failures.push_back("the map's counts of components and singular points are not those its proved clusters give");
   }
 
   const json& j_;
@@ -483,7 +483,7 @@ class Checker {
   std::vector<size_t> proved_maps_;      // curve clusters whose map re-proves as proved
   std::vector<CurveMap> proved_map_data_;
   std::map<size_t, CurveMap> reproved_maps_;  // curve clusters whose map re-proves, by index
-  int certified_ = 0, closed_curves_ = 0, open_arcs_ = 0;
+  int certified_ = 0, closed_curves_ = 0, open_arcs_ = 0, branches_ = 0, singular_points_ = 0;
   CheckOutcome out_;
 };
 

@@ -67,6 +67,10 @@ void check_counts(const json& j, const VerifyReport& r, std::vector<std::string>
     const json& m = v.contains("map") ? v.at("map") : json::object();
     same(m, "closed_curves", r.closed_curves, "verification.map.closed_curves", failures);
     same(m, "open_arcs", r.open_arcs, "verification.map.open_arcs", failures);
+    if (r.branches || r.singular_points || m.contains("branches")) {
+      same(m, "branches", r.branches, "verification.map.branches", failures);
+      same(m, "singular_points", r.singular_points, "verification.map.singular_points", failures);
+    }
     same(m, "proved", r.maps_proved, "verification.map.proved", failures);
   }
 }

@@ -66,7 +66,8 @@ void reprove(const formulate::Formulation& f, const std::vector<Box>& members, A
       return true;
     };
     auto is_empty = [&](const Box& piece) { return piece_empty(sys.equations, exclusion, piece); };
-    walk_pieces(natural, is_arc, is_empty, [&](const Box& piece, PieceKind kind) {
+    auto near = [&](const Box& piece) { return near_singular(m.singular_points, chart, piece); };
+    walk_pieces(natural, near, is_arc, is_empty, [&](const Box& piece, PieceKind kind) {
       if (kind == PieceKind::unresolved && !unresolved.count(key_of(k, piece)))
         out.failures.push_back("a piece with neither an arc nor a proof of emptiness is not listed as unresolved");
     });
@@ -94,6 +95,14 @@ bool same_arcs(const CurveMap& a, const CurveMap& b) {
         x.arc.parameter != y.arc.parameter)
       return false;
   }
+  return true;
+}
+
+// The stated kinds and branch counts are the recomputed ones.
+bool same_singular(const std::vector<SingularPoint>& a, const std::vector<SingularPoint>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t k = 0; k < a.size(); ++k)
+    if (a[k].kind != b[k].kind || a[k].branches != b[k].branches) return false;
   return true;
 }
 
@@ -154,13 +163,22 @@ MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, con
     out.failures.push_back("the map's equations are not the natural system's n - 1, nor redundant through its subspace");
     return out;
   }
+  for (auto& p : m.singular_points) {
+    const auto& natural = f.natural(p.chart);
+    if (!chart_exists(p.chart) || m.subspace_variable >= 0 || natural.equations.size() + 1 != natural.unknowns.size() ||
+        !reprove_singular_point(natural.equations, p))
+      out.failures.push_back("a singular point's certificate does not hold");
+  }
+  if (!out.failures.empty()) return out;
   reprove(f, members, systems, m, out);
   if (!out.failures.empty()) return out;
   join_arcs(f, members, m);
-  if (shape(m.components) != shape(stated.components) || m.proved != stated.proved)
+  if (shape(m.components) != shape(stated.components) || m.proved != stated.proved ||
+      !same_singular(m.singular_points, stated.singular_points))
     out.failures.push_back("the map's components or its proof are not what its arcs give");
   out.proved = out.failures.empty() && m.proved;
-  for (auto& c : m.components) ++(c.closed ? out.closed : out.open);
+  for (auto& c : m.components) ++(c.singular_ends ? out.branches : c.closed ? out.closed : out.open);
+  out.singular = static_cast<int>(m.singular_points.size());
   out.map = std::move(m);
   return out;
 }

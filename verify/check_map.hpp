@@ -15,6 +15,7 @@ struct MapCheck {
   std::vector<std::string> failures;
   bool proved = false;  // the map holds and proves the cluster's solution set
   int closed = 0, open = 0;  // its components, when proved
+  int branches = 0, singular = 0;  // components ending in singular points' boxes; those points
   int arcs = 0;         // arc certificates re-proved
   CurveMap map;         // as re-proved: arcs, images and ends recomputed, joined anew
 };

@@ -68,6 +68,9 @@ struct VerifyReport {
   // Components of the curve clusters' maps, and whether every curve cluster's map is proved.
   int closed_curves = 0;
   int open_arcs = 0;
+  // Arcs that end in proved singular points' boxes, and those points.
+  int branches = 0;
+  int singular_points = 0;
   bool maps_proved = false;
   int empty = 0;
   int infeasible = 0;

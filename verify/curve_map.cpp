@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <set>
 
 namespace linkbox::verify {
 
@@ -37,6 +38,16 @@ std::optional<Box> in_chart(const formulate::Formulation& f, const Box& end, std
 
 bool disjoint(const Box& a, const Box& b) { return a.size() != b.size() || !overlaps(a, b); }
 
+// The singular point whose box U holds an arc's end, if any.
+const SingularPoint* singular_holding(const formulate::Formulation& f, const std::vector<SingularPoint>& points, const Box& end,
+                                std::uint64_t chart) {
+  for (auto& p : points) {
+    const auto e = in_chart(f, end, chart, p.chart);
+    if (e && e->size() == p.normal.size() + 1 && contains(p.where(), *e)) return &p;
+  }
+  return nullptr;
+}
+
 // Whether end `side` of `a` lies on the boundary of the natural domain (empty: unbounded).
 bool on_domain_boundary(const newton::Arc& a, int side, const Box& domain) {
   if (domain.empty()) return false;
@@ -51,19 +62,35 @@ std::string plural(size_t k, const char* one, const char* many) {
 
 }  // namespace
 
+// "2 singular points (crossings at (1, 0, 1, 0) and (-1, 0, -1, 0), each exact and the only
+// one in its box; 4 and 4 branches reach their boxes)".
+std::string singular_words(const std::vector<SingularPoint>& points) {
+  std::string where, ends;
+  for (size_t k = 0; k < points.size(); ++k) {
+    const char* join = k == 0 ? "" : k + 1 == points.size() ? " and " : ", ";
+    std::string p;
+    for (auto& x : points[k].point) p += (p.empty() ? "" : ", ") + x;
+    where += join + std::string(to_string(points[k].kind)) + " at (" + p + ")";
+    ends += join + std::to_string(points[k].branches);
+  }
+  return plural(points.size(), "singular point", "singular points") + " (" + where +
+         (points.size() == 1 ? ", exact and the only one in its box; " : ", each exact and the only one in its box; ") +
+         ends + " branches reach " + (points.size() == 1 ? "its box)" : "their boxes)");
+}
+
 void state_map(CurveMap& map) {
-  size_t closed = 0;
-  for (auto& c : map.components) closed += c.closed;
-  const size_t open = map.components.size() - closed;
+  size_t closed = 0, open = 0, branches = 0;
+  for (auto& c : map.components) ++(c.singular_ends ? branches : c.closed ? closed : open);
   std::string what;
   if (closed) what = plural(closed, "closed curve", "closed curves");
   if (open) what += (what.empty() ? "" : " and ") + plural(open, "open arc", "open arcs") + " (ending on the domain's boundary)";
+  if (branches) what += (what.empty() ? "" : " and ") + plural(branches, "branch", "branches") + " between singular points";
   if (what.empty()) what = "no arc";
   if (map.proved) {
     const std::string subspace = map.subspace_variable < 0 ? "" : " (each also an arc, on " + map.argument +
         " = 0, of the equations that do not vanish there)";
-    map.statement = what + ", proved: " + plural(map.arcs.size(), "arc certificate", "arc certificates") +
-                    subspace + ", no singular point";
+    map.statement = what + ", proved: " + plural(map.arcs.size(), "arc certificate", "arc certificates") + subspace +
+                    ", " + (map.singular_points.empty() ? "no singular point" : singular_words(map.singular_points));
     return;
   }
   std::string why;
@@ -187,6 +214,23 @@ bool ArcSystems::reprove(MapArc& a, int subspace_variable) {
   return s && s->variable == subspace_variable && spans_on_subspace(*s, a.arc.box, a.arc.parameter);
 }
 
+constexpr double kHalo = 4;
+
+Near near_singular(const std::vector<SingularPoint>& points, std::uint64_t chart, const Box& piece) {
+  Near out = Near::apart;
+  for (auto& p : points) {
+    const Box u = p.where();
+    if (p.chart != chart || u.size() != piece.size()) continue;
+    if (contains(u, piece)) return Near::inside;
+    // Branches at a distance d from the point are about d apart: pieces within kHalo widths of
+    // U are walked deeper too.
+    Box halo = u;
+    for (auto& x : halo) x = x + Interval(-kHalo, kHalo) * Interval(width(x));
+    if (overlaps(halo, piece)) out = Near::meets;
+  }
+  return out;
+}
+
 bool piece_empty(const std::vector<model::Polynomial>& all, const std::shared_ptr<const model::CompiledSystem>& kept,
                  const Box& piece) {
   for (auto& e : all)
@@ -199,6 +243,7 @@ void join_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
   std::vector<size_t> parent(count);
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<bool> touches_boundary(count, false);
+  std::vector<std::pair<size_t, size_t>> ends_in;  // (arc, singular point)
   map.undecided_ends = map.loose_ends = 0;
   for (size_t a = 0; a < count; ++a) {
     const MapArc& ma = map.arcs[a];
@@ -209,7 +254,11 @@ void join_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
       const bool boundary = on_domain_boundary(ma.arc, side, domain);
       touches_boundary[a] = touches_boundary[a] || boundary;
       std::map<std::uint64_t, std::optional<Box>> carried;
-      bool continued = boundary;
+      // Inside a singular point's box the branches are not followed: an end there stops
+      // there, whatever other arcs also hold it.
+      const SingularPoint* p = singular_holding(f, map.singular_points, ma.arc.ends[side], ma.chart);
+      if (p) ends_in.emplace_back(a, static_cast<size_t>(p - map.singular_points.data()));
+      bool continued = boundary || p;
       for (size_t c = 0; c < count; ++c) {
         if (c == a) continue;
         const MapArc& mc = map.arcs[c];
@@ -246,6 +295,15 @@ void join_arcs(const formulate::Formulation& f, const std::vector<Box>& members,
     const Box& m = members.at(map.arcs[a].member);
     c.extent = c.extent.empty() ? m : hull(c.extent, m);
   }
+  // Per singular point, the components that reach its box.
+  std::vector<std::set<size_t>> reaching(map.singular_points.size());
+  for (auto [a, p] : ends_in) {
+    MapComponent& c = map.components[component_of.at(find(parent, a))];
+    c.closed = false;
+    ++c.singular_ends;
+    reaching[p].insert(component_of.at(find(parent, a)));
+  }
+  for (size_t p = 0; p < reaching.size(); ++p) map.singular_points[p].branches = static_cast<int>(reaching[p].size());
   map.proved = map.unresolved.empty() && map.undecided_ends == 0 && map.loose_ends == 0 &&
                count > 0;
   if (map.subspace_variable >= 0 && !map.charts.empty()) {
@@ -269,6 +327,79 @@ bool maps_apart(const formulate::Formulation& f, const CurveMap& a, const CurveM
   return ends_miss(a, b) && ends_miss(b, a);
 }
 
+namespace {
+
+using Sample = std::map<size_t, std::optional<MapArc>>;
+
+// Walks every member's pieces into map.arcs and map.unresolved (the sample's arcs used for
+// whole members); false when too many members stay unresolved to state a map.
+template <class Prove>
+bool walk_members(const formulate::Formulation& f, const std::vector<Box>& members, ArcSystems& systems,
+                  CurveMap& map, Sample sample, Prove&& prove) {
+  std::vector<size_t> unresolved_members;
+  for (size_t k = 0; k < members.size(); ++k) {
+    const std::uint64_t chart = map.charts[k];
+    const auto& sys = f.natural(chart);
+    const auto& exclusion = systems.for_exclusion(chart, map.subspace_variable);
+    Box natural;
+    try {
+      natural = f.output_to_natural(chart, members[k]);
+    } catch (const std::exception&) {
+      return false;
+    }
+    bool unresolved = false, whole = true;
+    walk_pieces(
+        natural, [&](const Box& piece) { return near_singular(map.singular_points, chart, piece); },
+        [&](const Box& piece) {
+          // The walk asks for the whole member first, which the sample may have tried.
+          auto tried = whole ? sample.find(k) : sample.end();
+          whole = false;
+          auto a = tried != sample.end() ? std::move(tried->second) : prove(k, piece);
+          if (!a) return false;
+          map.arcs.push_back(std::move(*a));
+          return true;
+        },
+        [&](const Box& piece) { return piece_empty(sys.equations, exclusion, piece); },
+        [&](const Box& piece, PieceKind kind) {
+          if (kind != PieceKind::unresolved) return;
+          map.unresolved.emplace_back(k, piece);
+          unresolved = true;
+        });
+    if (unresolved) unresolved_members.push_back(k);
+    if (too_many_unresolved(unresolved_members.size(), k + 1)) return false;
+  }
+  return true;
+}
+
+// Failed tries at a singular point before the rest of the unresolved pieces are left as they
+// are, and U's reach around a piece, in piece widths.
+constexpr int kSingularTries = 8;
+constexpr double kSingularReach = 4;
+
+// Proves singular points from the unresolved pieces of a map of n - 1 equations (one try per
+// piece not already by a found one); true when it found any.
+bool find_singular_points(const formulate::Formulation& f, CurveMap& map, const newton::NewtonOptions& options) {
+  if (map.subspace_variable >= 0) return false;
+  int failures = 0;
+  for (auto& [member, piece] : map.unresolved) {
+    const std::uint64_t chart = map.charts[member];
+    if (failures >= kSingularTries) break;
+    if (near_singular(map.singular_points, chart, piece) != Near::apart) continue;
+    auto p = prove_singular_point(f.natural(chart).equations, chart, piece, kSingularReach * max_width(piece), options);
+    const bool known = p && std::any_of(map.singular_points.begin(), map.singular_points.end(), [&](auto& q) {
+      return q.chart == chart && q.point == p->point;
+    });
+    if (!p || known) {
+      failures += !p;
+      continue;
+    }
+    map.singular_points.push_back(std::move(*p));
+  }
+  return !map.singular_points.empty();
+}
+
+}  // namespace
+
 std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::vector<Box>& members,
                                     const std::vector<std::uint64_t>& charts, const newton::NewtonOptions& options) {
   const auto& first = f.natural(charts.at(0));
@@ -288,37 +419,13 @@ std::optional<CurveMap> map_cluster(const formulate::Formulation& f, const std::
     return prove_arc(f, systems, map.subspace_variable, k, charts[k], piece, options);
   };
   auto sample = sample_arcs(f, members, charts, prove);
-  if (sample.empty()) return std::nullopt;
-  std::vector<size_t> unresolved_members;
-  for (size_t k = 0; k < members.size(); ++k) {
-    const auto& sys = f.natural(charts[k]);
-    const auto& exclusion = systems.for_exclusion(charts[k], map.subspace_variable);
-    Box natural;
-    try {
-      natural = f.output_to_natural(charts[k], members[k]);
-    } catch (const std::exception&) {
-      return std::nullopt;
-    }
-    bool unresolved = false, whole = true;
-    walk_pieces(
-        natural,
-        [&](const Box& piece) {
-          // The walk asks for the whole member first, which the sample may have tried.
-          auto tried = whole ? sample.find(k) : sample.end();
-          whole = false;
-          auto a = tried != sample.end() ? std::move(tried->second) : prove(k, piece);
-          if (!a) return false;
-          map.arcs.push_back(std::move(*a));
-          return true;
-        },
-        [&](const Box& piece) { return piece_empty(sys.equations, exclusion, piece); },
-        [&](const Box& piece, PieceKind kind) {
-          if (kind != PieceKind::unresolved) return;
-          map.unresolved.emplace_back(k, piece);
-          unresolved = true;
-        });
-    if (unresolved) unresolved_members.push_back(k);
-    if (too_many_unresolved(unresolved_members.size(), k + 1)) return std::nullopt;
+  if (sample.empty() || !walk_members(f, members, systems, map, std::move(sample), prove)) return std::nullopt;
+  // Pieces inside a singular point's box are covered by it, and the ones beside it are walked
+  // deeper: the members are walked again, as the checker walks them.
+  if (!map.unresolved.empty() && find_singular_points(f, map, options)) {
+    map.arcs.clear();
+    map.unresolved.clear();
+    if (!walk_members(f, members, systems, map, {}, prove)) return std::nullopt;
   }
   if (map.arcs.empty()) return std::nullopt;
   map.singular_regions = regions(f, map, f.outputs_are_angles());

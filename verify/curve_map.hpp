@@ -14,6 +14,7 @@
 #include "formulate/formulation.hpp"
 #include "newton/arc.hpp"
 #include "verify/coordinate_subspace.hpp"
+#include "verify/singular_point.hpp"
 
 #include <map>
 #include <optional>
@@ -37,7 +38,8 @@ struct MapArc {
 
 struct MapComponent {
   std::vector<size_t> arcs;  // indices into CurveMap::arcs
-  bool closed = false;       // no arc ends on the domain's boundary
+  bool closed = false;       // every arc end continued by another arc
+  int singular_ends = 0;     // arc ends inside a singular point's box
   Box extent;                // output variables: hull of the members its arcs cover
 };
 
@@ -56,10 +58,15 @@ struct CurveMap {
   std::vector<MapComponent> components;
   // Groups of touching unresolved pieces (output variables): where a singular point may be.
   std::vector<Box> singular_regions;
+  // Proved singular points (verify/singular_point.hpp): pieces inside one's box U are
+  // covered by it, and arcs may end there. What the solution set is inside U, beyond its
+  // one singular point, is not stated.
+  std::vector<SingularPoint> singular_points;
   int undecided_ends = 0;  // end enclosures that straddle another arc's box
   int loose_ends = 0;      // ends inside the domain that no other arc's box holds
-  // The solution set in the cluster's boxes is exactly the union of the components, each a
-  // smooth closed curve or an arc ending on the domain's boundary.
+  // The solution set in the cluster's boxes, outside the singular points' boxes, is exactly
+  // the union of the components, each a smooth closed curve or an arc ending on the
+  // domain's boundary or in a singular point's box.
   bool proved = false;
   std::string statement;  // the map in words, with what is not proved and why
 };
@@ -83,23 +90,35 @@ class ArcSystems {
   std::map<std::uint64_t, std::optional<CoordinateSubspace>> subspace_;
 };
 
-// Bisection depth of a member's pieces: at most 2^kMapDepth pieces per member.
+// Bisection depth of a member's pieces: at most 2^kMapDepth pieces per member, and
+// kSingularDepth more near a singular point's box (the branches beside it are as close as
+// the distance to it).
 constexpr int kMapDepth = 5;
+constexpr int kSingularDepth = 12;
 
-// What covers one piece: an arc, an exclusion, or neither at the depth limit.
-enum class PieceKind { arc, empty, unresolved };
+// What covers one piece: an arc, an exclusion, a singular point's box, or neither at the
+// depth limit.
+enum class PieceKind { arc, empty, singular, unresolved };
 
-// Walks the pieces of a member's natural box `box` as the map covers it: `is_arc(piece)`
-// first, then `is_empty(piece)`, then bisection (widest side, at the midpoint) down to
-// kMapDepth; `leaf` hears every final piece. Producer and checker walk the same tree.
-template <class IsArc, class IsEmpty, class Leaf>
-void walk_pieces(const Box& box, IsArc&& is_arc, IsEmpty&& is_empty, Leaf&& leaf, int depth = 0) {
+// Where a piece lies with respect to the singular points' boxes of its chart: inside one, or
+// within a few of its widths.
+enum class Near { apart, meets, inside };
+Near near_singular(const std::vector<SingularPoint>& points, std::uint64_t chart, const Box& piece);
+
+// Walks the pieces of a member's natural box `box` as the map covers it: inside a singular
+// point's box (`near`), then `is_arc(piece)`, then `is_empty(piece)`, then bisection (widest
+// side, at the midpoint) down to the depth; `leaf` hears every final piece. Producer and
+// checker walk the same tree.
+template <class Nearness, class IsArc, class IsEmpty, class Leaf>
+void walk_pieces(const Box& box, Nearness&& near, IsArc&& is_arc, IsEmpty&& is_empty, Leaf&& leaf, int depth = 0) {
+  const Near where = near(box);
+  if (where == Near::inside) return leaf(box, PieceKind::singular);
   if (is_arc(box)) return leaf(box, PieceKind::arc);
   if (is_empty(box)) return leaf(box, PieceKind::empty);
-  if (depth >= kMapDepth) return leaf(box, PieceKind::unresolved);
+  if (depth >= kMapDepth + (where == Near::meets ? kSingularDepth : 0)) return leaf(box, PieceKind::unresolved);
   auto [lo, hi] = bisect(box, widest_dimension(box));
-  walk_pieces(lo, is_arc, is_empty, leaf, depth + 1);
-  walk_pieces(hi, is_arc, is_empty, leaf, depth + 1);
+  walk_pieces(lo, near, is_arc, is_empty, leaf, depth + 1);
+  walk_pieces(hi, near, is_arc, is_empty, leaf, depth + 1);
 }
 
 // Whether a piece provably holds no solution: an equation of `all` misses 0 over it, or the

@@ -41,11 +41,24 @@ json map_json(const CurveMap& map) {
   }
   json components = json::array();
   for (auto& c : map.components)
-    components.push_back({{"arcs", c.arcs}, {"closed", c.closed}, {"extent", exact_json(c.extent)}});
+    components.push_back(
+        {{"arcs", c.arcs}, {"closed", c.closed}, {"singular_ends", c.singular_ends}, {"extent", exact_json(c.extent)}});
   json regions = json::array();
   for (auto& r : map.singular_regions) regions.push_back(exact_json(r));
   json unresolved = json::array();
   for (auto& [member, piece] : map.unresolved) unresolved.push_back({{"member", member}, {"piece", exact_json(piece)}});
+  json singular = json::array();
+  for (auto& p : map.singular_points) {
+    json normal = json::array();
+    for (double x : p.normal) normal.push_back(exact_json(x));
+    singular.push_back({{"chart", p.chart},
+                        {"box", exact_json(p.box)},
+                        {"preconditioner", matrix_json(p.preconditioner)},
+                        {"normal", normal},
+                        {"point", p.point},
+                        {"kind", to_string(p.kind)},
+                        {"branches", p.branches}});
+  }
   json out = {{"proved", map.proved},
           {"statement", map.statement},
           {"equations", map.equations},
@@ -55,6 +68,7 @@ json map_json(const CurveMap& map) {
           {"loose_ends", map.loose_ends},
           {"unresolved", unresolved},
           {"singular_regions", regions},
+          {"singular_points", singular},
           {"arcs", arcs}};
   if (map.subspace_variable >= 0) out["subspace_variable"] = map.subspace_variable;
   return out;
@@ -68,8 +82,21 @@ CurveMap map_from(const json& j) {
   map.subspace_variable = j.value("subspace_variable", -1);
   map.charts = j.at("charts").get<std::vector<std::uint64_t>>();
   for (auto& c : j.at("components"))
-    map.components.push_back({c.at("arcs").get<std::vector<size_t>>(), c.at("closed").get<bool>(), exact_box(c.at("extent"))});
+    map.components.push_back({c.at("arcs").get<std::vector<size_t>>(), c.at("closed").get<bool>(),
+                              c.value("singular_ends", 0), exact_box(c.at("extent"))});
   for (auto& r : j.at("singular_regions")) map.singular_regions.push_back(exact_box(r));
+  for (auto& p : j.value("singular_points", json::array())) {
+    SingularPoint s;
+    s.chart = p.at("chart");
+    s.box = exact_box(p.at("box"));
+    s.preconditioner = matrix_from(p.at("preconditioner"));
+    for (auto& x : p.at("normal")) s.normal.push_back(exact_double(x));
+    s.point = p.at("point").get<std::vector<std::string>>();
+    const std::string kind = p.at("kind");
+    s.kind = kind == "crossing" ? SingularKind::crossing : kind == "isolated" ? SingularKind::isolated : SingularKind::degenerate;
+    s.branches = p.at("branches");
+    map.singular_points.push_back(std::move(s));
+  }
   map.undecided_ends = j.at("undecided_ends");
   map.loose_ends = j.at("loose_ends");
   for (auto& u : j.at("unresolved")) map.unresolved.emplace_back(u.at("member").get<size_t>(), exact_box(u.at("piece")));

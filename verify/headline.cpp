@@ -16,11 +16,13 @@ std::string without_detail(const std::string& reason) {
 std::string count(int k, const char* one, const char* many) { return std::to_string(k) + " " + (k == 1 ? one : many); }
 
 // "2 isolated roots, 1 closed curve and 2 open arcs"; isolated < 0 leaves them out.
-std::string map_words(int isolated, int closed, int open) {
+std::string map_words(int isolated, const VerifyReport& r) {
   std::vector<std::string> parts;
   if (isolated >= 0) parts.push_back(count(isolated, "isolated root", "isolated roots"));
-  if (closed) parts.push_back(count(closed, "closed curve", "closed curves"));
-  if (open) parts.push_back(count(open, "open arc", "open arcs") + " (ending on the domain's boundary)");
+  if (r.closed_curves) parts.push_back(count(r.closed_curves, "closed curve", "closed curves"));
+  if (r.open_arcs) parts.push_back(count(r.open_arcs, "open arc", "open arcs") + " (ending on the domain's boundary)");
+  if (r.branches) parts.push_back(count(r.branches, "branch", "branches"));
+  if (r.singular_points) parts.push_back(count(r.singular_points, "singular point", "singular points"));
   std::string s;
   for (size_t k = 0; k < parts.size(); ++k) s += (k == 0 ? "" : k + 1 == parts.size() ? " and " : ", ") + parts[k];
   return s;
@@ -42,8 +44,11 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
     } else if (c.status == ClusterStatus::curve) {
       report.curves++;
       maps_proved = maps_proved && c.map && c.map->proved;
-      if (c.map && c.map->proved)
-        for (auto& comp : c.map->components) ++(comp.closed ? report.closed_curves : report.open_arcs);
+      if (c.map && c.map->proved) {
+        for (auto& comp : c.map->components)
+          ++(comp.singular_ends ? report.branches : comp.closed ? report.closed_curves : report.open_arcs);
+        report.singular_points += static_cast<int>(c.map->singular_points.size());
+      }
     } else if (c.status == ClusterStatus::empty) {
       report.empty++;
     } else if (c.status == ClusterStatus::infeasible) {
@@ -70,8 +75,11 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
   const std::string family =
       report.interval_constants.empty() ? "" : " for every value of the interval constants";
   if (report.exact && report.curves) {
-    report.headline = "exactly " + map_words(n, report.closed_curves, report.open_arcs) + " " + where + family +
-                      ", each certified (isolated roots by interval Newton, curves by arc certificates)" + excluded;
+    const std::string singular =
+        report.singular_points ? ", singular points by exact arithmetic, each the only one in its box" : "";
+    report.headline = "exactly " + map_words(n, report) + " " + where + family +
+                      ", each certified (isolated roots by interval Newton, curves by arc certificates" + singular + ")" +
+                      excluded;
     return;
   }
   if (report.exact) {
@@ -81,8 +89,8 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
   }
   report.headline = std::to_string(n) + " certified" + family;
   if (report.curves) report.headline += ", " + std::to_string(report.curves) + " curve cluster(s)";
-  if (report.closed_curves + report.open_arcs)
-    report.headline += " (" + map_words(-1, report.closed_curves, report.open_arcs) + " proved)";
+  if (report.closed_curves + report.open_arcs + report.branches)
+    report.headline += " (" + map_words(-1, report) + " proved)";
   if (report.unverified) report.headline += ", " + std::to_string(report.unverified) + " unresolved";
   if (report.empty) report.headline += ", " + std::to_string(report.empty) + " proved empty";
   report.headline += excluded;

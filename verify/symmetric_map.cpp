@@ -278,7 +278,7 @@ void join(const std::vector<Box>& members, const std::vector<std::vector<size_t>
   std::map<size_t, size_t> component_of;
   for (size_t a = 0; a < count; ++a) {
     auto [it, fresh] = component_of.emplace(find(parent, a), map.components.size());
-    if (fresh) map.components.push_back({{}, true, {}});
+    if (fresh) map.components.push_back({{}, true, 0, {}});
     MapComponent& c = map.components[it->second];
     c.arcs.push_back(a);
     for (size_t k : covered[a]) c.extent = c.extent.empty() ? members.at(k) : hull(c.extent, members.at(k));

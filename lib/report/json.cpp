@@ -238,7 +238,11 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
                        {"exact", r.exact}, {"seconds", r.seconds}};
   if (r.curves) {
     // The curve clusters' maps, summed: components, and whether every one is proved.
-    j["verification"]["map"] = {{"closed_curves", r.closed_curves}, {"open_arcs", r.open_arcs}, {"proved", r.maps_proved}};
+    j["verification"]["map"] = {{"closed_curves", r.closed_curves},
+                                {"open_arcs", r.open_arcs},
+                                {"branches", r.branches},
+                                {"singular_points", r.singular_points},
+                                {"proved", r.maps_proved}};
   }
   if (!r.interval_constants.empty()) j["verification"]["interval_constants"] = r.interval_constants;
   if (r.inequalities) {

@@ -92,11 +92,20 @@ namespace {
 void print_map(std::FILE* out, const std::vector<std::string>& names, const verify::ClusterReport& cl) {
   std::fprintf(out, "  curve cluster of %zu boxes: %s\n", cl.boxes.size(), cl.map->statement.c_str());
   for (auto& comp : cl.map->components) {
-    const char* what = !cl.map->proved ? "arcs joined" : comp.closed ? "closed curve" : "open arc";
+    const char* what = !cl.map->proved      ? "arcs joined"
+                       : comp.singular_ends ? "branch"
+                       : comp.closed        ? "closed curve"
+                                            : "open arc";
     std::fprintf(out, "    %s (%zu arcs):", what, comp.arcs.size());
     for (size_t i = 0; i < comp.extent.size() && i < names.size(); ++i)
       std::fprintf(out, " %s in [%+.4f, %+.4f]", names[i].c_str(), comp.extent[i].lower(), comp.extent[i].upper());
     std::fprintf(out, "\n");
+  }
+  for (auto& p : cl.map->singular_points) {
+    std::string at;
+    for (auto& x : p.point) at += (at.empty() ? "" : ", ") + x;
+    std::fprintf(out, "    singular point (%s) at (%s) in the natural unknowns: the only one in its box of width %.1e; %d branches reach it\n",
+                 verify::to_string(p.kind), at.c_str(), max_width(p.where()), p.branches);
   }
   for (auto& r : cl.map->singular_regions) {
     std::fprintf(out, "    possible singular point:");

@@ -5,7 +5,8 @@
 
 Each component of every mapped curve cluster in its own colour (the solution boxes its arcs
 cover, projected on two output variables), certified isolated roots as red dots, regions
-where no arc was proved (possible singular points) as black squares, other solution boxes
+where no arc was proved (possible singular points) as black squares, proved singular points
+as black stars, other solution boxes
 (unmapped curves, unresolved clusters) in grey. The two variables default to the pair with
 the widest extent over the solution boxes. The title is the result's headline.
 """
@@ -14,6 +15,7 @@ import json
 import os
 import sys
 import textwrap
+from fractions import Fraction
 
 try:
     import matplotlib
@@ -79,7 +81,7 @@ def main():
             # A symmetric loop's arc also covers members it made no arc in: the nearest
             # member with an arc names their component.
             with_arc = sorted(owner)
-            centre = lambda m: [(lo + hi) / 2 for lo, hi in members[m]]
+            centre = lambda m: [(lo + hi) / 2 for lo, hi in boxes[members[m]]]
             for m in range(len(members)):
                 if m not in owner:
                     d = [sum((x - y) ** 2 for x, y in zip(centre(m), centre(a))) for a in with_arc] \
@@ -87,7 +89,8 @@ def main():
                     owner[m] = owner[with_arc[d.index(min(d))]]
             for k, comp in enumerate(cmap["components"]):
                 colour = colours(component % 10)
-                label = "%s %d (%d arcs)" % ("closed curve" if comp["closed"] else "open arc", component + 1, len(comp["arcs"]))
+                kind = "branch" if comp.get("singular_ends") else "closed curve" if comp["closed"] else "open arc"
+                label = "%s %d (%d arcs)" % (kind, component + 1, len(comp["arcs"]))
                 for n, m in enumerate(m for m in range(len(members)) if owner[m] == k):
                     key = members[m]
                     b = boxes[key]
@@ -99,6 +102,13 @@ def main():
             for n, r in enumerate(cmap.get("singular_regions", [])):
                 ax.plot([(r[i][0] + r[i][1]) / 2], [(r[j][0] + r[j][1]) / 2], "ks", markersize=7,
                         label="possible singular point" if n == 0 and component <= 1 else None)
+            # Proved singular points: exact, in the natural unknowns (drawn where those are
+            # the output variables, as in the polynomial cases).
+            for n, p in enumerate(cmap.get("singular_points", [])):
+                if len(p["point"]) == len(names):
+                    x = [float(Fraction(v)) for v in p["point"]]
+                    ax.plot([x[i]], [x[j]], "k*", markersize=12,
+                            label="singular point (%s)" % p["kind"] if n == 0 else None)
         if c["status"] == "certified" and "root" in c and "duplicate_of" not in c:
             r = c["root"]
             ax.plot([(r[i][0] + r[i][1]) / 2], [(r[j][0] + r[j][1]) / 2], "r.", markersize=10)
