@@ -21,7 +21,7 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 CURVES = ["cases/curves/%s.toml" % c for c in
           ("fourbar-grashof", "fourbar-nongrashof", "fourbar-half-domain", "circle-3d", "fourbar-parallelogram",
-           "circle-on-plane")] + ["cases/hard/gimbal-lock.toml"]
+           "circle-on-plane", "viviani")] + ["cases/hard/gimbal-lock.toml"]
 LOOPS = ["cases/linkages/6r-mobile.toml", "cases/linkages/cyclohexane.toml"]
 VARIANTS = [["--prune", "hc4,newton"], ["--prune", "lp"], ["--sigma", "0.03"], ["--sigma", "0.01"]]
 
