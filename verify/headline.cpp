@@ -76,7 +76,10 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
       report.interval_constants.empty() ? "" : " for every value of the interval constants";
   if (report.exact && report.curves) {
     const std::string singular =
-        report.singular_points ? ", singular points by exact arithmetic, each the only one in its box" : "";
+        report.singular_points
+            ? ", singular points by exact arithmetic, each the only one in its box; inside those boxes the branches are "
+              "not followed"
+            : "";
     report.headline = "exactly " + map_words(n, report) + " " + where + family +
                       ", each certified (isolated roots by interval Newton, curves by arc certificates" + singular + ")" +
                       excluded;

@@ -1,7 +1,6 @@
 #include "verify/singular_point.hpp"
 
 #include "newton/interval_eigen.hpp"
-
 #include "newton/square_system.hpp"
 
 #include <Eigen/LU>
