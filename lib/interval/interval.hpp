@@ -50,6 +50,10 @@ using Interval =
 using FastInterval = bi::unprotect<Interval>::type;
 using RoundingGuard = Interval::traits_type::rounding;
 
+// The same bounds in the other arithmetic (no rounding: the ends are copied).
+inline FastInterval as_fast(const Interval& x) { return FastInterval(x.lower(), x.upper()); }
+inline Interval as_protected(const FastInterval& x) { return Interval(x.lower(), x.upper()); }
+
 // How pruning computes: `verified` rounds outward (every exclusion proved); `float_unverified`
 // is the same algorithm in round-to-nearest doubles with midpoint coefficients, for
 // comparison only (it can cut roots). One typed switch from the command line to each

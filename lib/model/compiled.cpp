@@ -36,7 +36,7 @@ CompiledSystem::Compiled CompiledSystem::add(const Polynomial& p, Arith arith) {
   Compiled c{static_cast<int>(terms_.size()), 0};
   for (auto& [powers, coef] : p.terms()) {
     const Interval k = coefficient_for(arith, coef);
-    Term t{FastInterval(k.lower(), k.upper()), median(k), static_cast<int>(factors_.size()), 0};
+    Term t{as_fast(k), median(k), static_cast<int>(factors_.size()), 0};
     for (auto [v, e] : powers) factors_.emplace_back(v, e);
     t.end = static_cast<int>(factors_.size());
     terms_.push_back(t);
@@ -62,15 +62,13 @@ void CompiledSystem::add_links(const std::vector<Link>& links, size_t variables)
 }
 
 FastInterval CompiledSystem::link_value(size_t k, const Interval& y, const Interval& a) const {
-  const Interval v = row_value(links_[k], y, a);
-  return FastInterval(v.lower(), v.upper());
+  return as_fast(row_value(links_[k], y, a));
 }
 
 FastInterval CompiledSystem::link_entry(size_t e, const Box& x) const {
   const auto [k, is_y] = link_entries_[e - partials_.size()];
   if (is_y) return FastInterval(1.0);
-  const Interval d = row_derivative(links_[k], x[links_[k].a]);
-  return FastInterval(d.lower(), d.upper());
+  return as_fast(row_derivative(links_[k], x[links_[k].a]));
 }
 
 namespace {

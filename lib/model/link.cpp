@@ -38,14 +38,12 @@ Interval point(double v) { return Interval(v); }
 // exp, log, sin and cos in double arithmetic (fast_exp, fast_trig: the same enclosures a few
 // ulps wider, without multi-precision), where those answer; MPFI otherwise. These run in the
 // caller's rounding mode: the fast ones set their own, MPFI's run inside Nearest.
-Interval slow(const FastInterval& x) { return Interval(x.lower(), x.upper()); }
-
 Interval fast_or_mpfi(const Interval& x, bool (*fast)(const FastInterval&, FastInterval&),
                       Interval (*mpfi)(const Interval&)) {
   {
     RoundingGuard guard;
     FastInterval r;
-    if (fast(FastInterval(x.lower(), x.upper()), r)) return slow(r);
+    if (fast(as_fast(x), r)) return as_protected(r);
   }
   Nearest nearest;
   return mpfi(x);
@@ -56,11 +54,11 @@ Interval log(const Interval& x) { return fast_or_mpfi(x, fast_exp::log, rigorous
 
 fast_trig::SinCos sin_cos(const Interval& x) {
   RoundingGuard guard;
-  return fast_trig::sin_cos(FastInterval(x.lower(), x.upper()));
+  return fast_trig::sin_cos(as_fast(x));
 }
 
-Interval sin(const Interval& x) { return slow(sin_cos(x).sin); }
-Interval cos(const Interval& x) { return slow(sin_cos(x).cos); }
+Interval sin(const Interval& x) { return as_protected(sin_cos(x).sin); }
+Interval cos(const Interval& x) { return as_protected(sin_cos(x).cos); }
 
 const Interval& half_pi() {
   static const Interval h = rigorous::pi() / Interval(2.0);

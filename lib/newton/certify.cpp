@@ -337,7 +337,7 @@ std::vector<int> parameters_by_conditioning(const model::CompiledSystem& f, cons
     f.jacobian(point_box(centre_of(box)), d.data());
   }
   Eigen::MatrixXd j = Eigen::MatrixXd::Zero(n - 1, n);
-  for (int e = 0; e < f.nonzeros(); ++e) j(f.entry_row(e), f.entry_col(e)) = median(Interval(d[e].lower(), d[e].upper()));
+  for (int e = 0; e < f.nonzeros(); ++e) j(f.entry_row(e), f.entry_col(e)) = median(as_protected(d[e]));
   std::vector<std::pair<double, int>> ranked;
   for (int p = 0; p < n; ++p) {
     Eigen::MatrixXd sub(n - 1, n - 1);

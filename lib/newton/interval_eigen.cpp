@@ -35,18 +35,14 @@ Eigen::VectorXd midpoint(const IVector& v) {
 // The products below run inside one RoundingGuard on FastInterval: protected operations
 // would switch the rounding mode twice per multiply-add, which was a third of the time of
 // verifying a curve's boxes.
-namespace {
-FastInterval fast(const Interval& x) { return FastInterval(x.lower(), x.upper()); }
-Interval slow(const FastInterval& x) { return Interval(x.lower(), x.upper()); }
-}  // namespace
 
 IVector multiply(const Eigen::MatrixXd& a, const IVector& x) {
   IVector r(a.rows());
   RoundingGuard guard;
   for (Eigen::Index i = 0; i < a.rows(); ++i) {
     FastInterval s(0.0);
-    for (Eigen::Index k = 0; k < a.cols(); ++k) s += a(i, k) * fast(x(k));
-    r(i) = slow(s);
+    for (Eigen::Index k = 0; k < a.cols(); ++k) s += a(i, k) * as_fast(x(k));
+    r(i) = as_protected(s);
   }
   return r;
 }
@@ -56,8 +52,8 @@ IVector multiply(const IMatrix& a, const IVector& x) {
   RoundingGuard guard;
   for (Eigen::Index i = 0; i < a.rows(); ++i) {
     FastInterval s(0.0);
-    for (Eigen::Index k = 0; k < a.cols(); ++k) s += fast(a(i, k)) * fast(x(k));
-    r(i) = slow(s);
+    for (Eigen::Index k = 0; k < a.cols(); ++k) s += as_fast(a(i, k)) * as_fast(x(k));
+    r(i) = as_protected(s);
   }
   return r;
 }
@@ -79,13 +75,13 @@ IMatrix product(const Eigen::MatrixXd& a, const IMatrix& b, bool minus) {
     for (Eigen::Index k = 0; k < a.cols(); ++k) {
       const Interval& bkj = b(k, j);
       if (sparse && bkj.lower() == 0 && bkj.upper() == 0) continue;
-      const FastInterval x = fast(bkj);
+      const FastInterval x = as_fast(bkj);
       if (minus)
         for (Eigen::Index i = 0; i < a.rows(); ++i) s[i] -= a(i, k) * x;
       else
         for (Eigen::Index i = 0; i < a.rows(); ++i) s[i] += a(i, k) * x;
     }
-    for (Eigen::Index i = 0; i < a.rows(); ++i) r(i, j) = slow(s[i]);
+    for (Eigen::Index i = 0; i < a.rows(); ++i) r(i, j) = as_protected(s[i]);
   }
   return r;
 }
