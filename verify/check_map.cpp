@@ -154,6 +154,7 @@ MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, con
     return out;
   }
   if (m.equations.empty()) {  // the symmetric loop's maps speak of no natural equations
+    if (!m.singular_points.empty()) out.failures.push_back("a symmetric loop's map states singular points");
     check_symmetric(f, members, m, out);
     return out;
   }
@@ -164,9 +165,9 @@ MapCheck check_map(const nlohmann::json& j, const formulate::Formulation& f, con
     return out;
   }
   for (auto& p : m.singular_points) {
-    const auto& natural = f.natural(p.chart);
-    if (!chart_exists(p.chart) || m.subspace_variable >= 0 || natural.equations.size() + 1 != natural.unknowns.size() ||
-        !reprove_singular_point(natural.equations, p))
+    const bool fits = chart_exists(p.chart) && m.subspace_variable < 0 &&
+                      f.natural(p.chart).equations.size() + 1 == f.natural(p.chart).unknowns.size();
+    if (!fits || !reprove_singular_point(f.natural(p.chart).equations, p))
       out.failures.push_back("a singular point's certificate does not hold");
   }
   if (!out.failures.empty()) return out;

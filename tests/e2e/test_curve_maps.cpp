@@ -228,6 +228,13 @@ TEST_CASE("the mobile 6R, narrowed, maps to one proved closed curve", "[verify][
     return !verify::check_certificates(j, *m.c.formulation).failures.empty();
   };
   CHECK(rejected([](auto& j) { j["verification"]["map"]["closed_curves"] = 2; }));
+  CHECK(rejected([](auto& j) {  // a well-formed singular point stated where the symmetry proves none
+    for (auto& c : j["clusters"])
+      if (c.contains("map"))
+        c["map"]["singular_points"] = nlohmann::json::array({{{"chart", 0}, {"box", {{0, 0}}}, {"preconditioner", {0, 0, nlohmann::json::array()}},
+                                                              {"normal", nlohmann::json::array()}, {"point", nlohmann::json::array()},
+                                                              {"kind", "crossing"}, {"branches", 0}}});
+  }));
   CHECK(rejected([](auto& j) {
     for (auto& c : j["clusters"])
       if (c.contains("map") && !c["map"]["arcs"].empty()) {
