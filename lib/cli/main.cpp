@@ -9,6 +9,7 @@
 #include "input/input_error.hpp"
 #include "input/to_toml.hpp"
 #include "input/case_hash.hpp"
+#include "prune/lp/openblas.hpp"
 #include "verify/check.hpp"
 #include "verify/check_claims.hpp"
 
@@ -161,9 +162,9 @@ int error_exit_code(const cli::RunMode& mode) {
 
 // CLP's LAPACK may be OpenBLAS, whose thread pool busy-waits for work (papers/decisions/
 // solve-driver.md); linkbox makes no BLAS calls worth threading. The setting is read at load,
-// so set it and start again once.
+// so set it and start again once; with any other LAPACK a restart only doubles the start-up.
 void single_threaded_blas(char** argv) {
-  if (std::getenv("OPENBLAS_NUM_THREADS")) return;
+  if (std::getenv("OPENBLAS_NUM_THREADS") || !prune::lp::openblas_loaded()) return;
   setenv("OPENBLAS_NUM_THREADS", "1", 1);
   execv("/proc/self/exe", argv);  // returns only on failure: then run as we are
 }
