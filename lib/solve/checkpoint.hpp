@@ -18,7 +18,7 @@ namespace linkbox::solve {
 // Where a race between candidate strategies stands (see solve/race.hpp).
 struct RacePosition {
   double turn = 0;
-  size_t next = 0;     // the candidate whose run is under way or next
+  size_t next = 0;     // the position, in this round's order (the lead first), of the run under way or next
   size_t lead = 0;     // the candidate with the best projection this round
   double target = -1;  // the work the running candidate runs up to; < 0: not yet set
   int winner = -1;     // >= 0: the race is over; the winner's result is being refined

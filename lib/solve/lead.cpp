@@ -39,7 +39,8 @@ size_t choose_lead(size_t held, const std::vector<Standing>& now, const Progress
   size_t lead = held;
   double best = -1;
   for (size_t k = 0; k < now.size(); ++k) {
-    if (k == held) continue;
+    // No work counted (its first box capped, race.cpp): it has shown nothing yet.
+    if (k == held || now[k].work <= 0) continue;
     const double ahead = ahead_of(held_progress, now[k]);
     if (ahead >= 0 && cheaper(now[held], now[k]) && ahead > best) {
       best = ahead;

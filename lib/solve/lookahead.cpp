@@ -8,7 +8,8 @@ namespace linkbox::solve::detail {
 // One look-ahead run: what its workers share, under Lookahead::m_.
 class Lookahead::Run {
  public:
-  Run(Lookahead& ahead, SearchCore& core, double work_limit) : la_(ahead), core_(core), limit_(work_limit) {}
+  Run(Lookahead& ahead, SearchCore& core, double work_limit, double box_cap)
+      : la_(ahead), core_(core), limit_(work_limit), cap_(box_cap) {}
   void worker(prune::Sequence& c, Certifier* certify);
 
  private:
@@ -25,11 +26,16 @@ class Lookahead::Run {
   Lookahead& la_;
   SearchCore& core_;
   double limit_;
+  double cap_;
   bool over_ = false;
 };
 
-void Lookahead::run(SearchCore& core, int threads, double work_limit) {
-  Run run(*this, core, work_limit);
+void Lookahead::run(SearchCore& core, int threads, double work_limit, double box_cap) {
+  {
+    std::lock_guard lock(m_);
+    reopen_capped();
+  }
+  Run run(*this, core, work_limit, box_cap);
   core.on_threads(threads, [&](prune::Sequence& c, Certifier* certify) { run.worker(c, certify); });
 }
 
@@ -65,7 +71,7 @@ void Lookahead::Run::worker(prune::Sequence& c, Certifier* certify) {
     if (!pick->listed) la_.open_.erase(pick->path);
     a.mark = Ahead::Mark::busy;
     lock.unlock();
-    Processed p = core_.process(c, certify, std::move(node), cut, stop);
+    Processed p = core_.process(c, certify, std::move(node), cut, stop, cap_);
     lock.lock();
     if (!keep(*pick, a, std::move(p))) break;
     la_.cv_.notify_all();
@@ -80,9 +86,15 @@ void Lookahead::Run::commit_done_top() {
   RunControl& control = core_.control;
   while (!over_ && !control.stopped && !front.pending.empty() && front.work < limit_) {
     const auto it = la_.ahead_.find(front.pending.back().path);
-    if (it == la_.ahead_.end() || it->second.mark != Ahead::Mark::done) break;
+    const bool capped = it != la_.ahead_.end() && it->second.mark == Ahead::Mark::capped;
+    if (!capped && (it == la_.ahead_.end() || it->second.mark != Ahead::Mark::done)) break;
     if (control.pause_request && control.pause_request()) {
       control.paused = true;
+      break;
+    }
+    // As one thread: the pause is asked before the box, which then ends the run.
+    if (capped) {
+      control.capped = over_ = true;
       break;
     }
     front.pending.pop_back();
@@ -138,6 +150,11 @@ bool Lookahead::Run::keep(const Pick& pick, Ahead& a, Processed&& p) {
     }
     return false;
   }
+  if (p.verdict == Verdict::capped) {
+    // Held, not open: no thread takes it again in this run. A listed box is still listed.
+    a = Ahead{Ahead::Mark::capped, pick.listed ? Node{} : std::move(p.node), {}, false, pick.listed != nullptr};
+    return true;
+  }
   if (p.verdict == Verdict::split)
     for (const Node* half : {&p.halves.first, &p.halves.second})
       if (!la_.ahead_.count(half->path)) {
@@ -148,6 +165,21 @@ bool Lookahead::Run::keep(const Pick& pick, Ahead& a, Processed&& p) {
   la_.work_ += p.work;
   a.done = std::move(p);
   return true;
+}
+
+// A capped box is shrunk again by the next run, which may have a larger cap or none.
+void Lookahead::reopen_capped() {
+  for (auto it = ahead_.begin(); it != ahead_.end();) {
+    if (it->second.mark != Ahead::Mark::capped) {
+      ++it;
+    } else if (it->second.listed) {
+      it = ahead_.erase(it);  // taken from the list again
+    } else {
+      it->second.mark = Ahead::Mark::open;
+      open_.insert(it->first);
+      ++it;
+    }
+  }
 }
 
 void Lookahead::clear() {

@@ -24,8 +24,9 @@ namespace linkbox::solve::detail {
 
 class Lookahead {
  public:
-  // Runs `core` on `threads` threads until its work reaches `work_limit`, as one thread would.
-  void run(SearchCore& core, int threads, double work_limit);
+  // Runs `core` on `threads` threads until its work reaches `work_limit` or the top box passes
+  // `box_cap` (0: none), as one thread would.
+  void run(SearchCore& core, int threads, double work_limit, double box_cap);
   bool lent() const { return lent_; }  // some box was lent: runs to a limit come here
   void clear();                        // a new state: nothing ahead, nothing lent
 
@@ -39,14 +40,17 @@ class Lookahead {
 
  private:
   class Run;
+  void reopen_capped();
   // A box processed ahead of its turn in depth-first order, or one a thread is shrinking, or
   // a child of such a box waiting for a thread.
   struct Ahead {
-    // remote: lent (or below a lent box), its record not back yet.
-    enum class Mark { open, busy, done, remote } mark = Mark::open;
-    Node node;       // open
+    // remote: lent (or below a lent box), its record not back yet. capped: it passed this
+    // run's cap; the run ends when it reaches the top, and the next run shrinks it again.
+    enum class Mark { open, busy, done, remote, capped } mark = Mark::open;
+    Node node;       // open, capped
     Processed done;  // done
     bool delivered = false;  // done by another search (not in work_)
+    bool listed = false;     // capped: the box is in the list (else `node` holds it)
   };
   // Boxes beyond the depth-first front, by path, kept across runs (a race's turns); `open_`
   // indexes the open ones, `work_` sums the done ones' work.

@@ -13,6 +13,12 @@ namespace {
 // After the first turn, the leader's share of a turn is 1, every other candidate's this.
 constexpr double kRaceShare = 0.125;
 constexpr double kFirstTurn = 4000;
+// In the first round a box may cost at most this: a candidate whose first box costs a hundred
+// times the others' whole share (an LP over a large lifted system) would otherwise spend it
+// before any candidate is compared. A capped box is shrunk again, uncapped, next round; its
+// work up to the cap is lost (the counts leave it out). Caps only ever grow (first round,
+// then none), so a box is capped in a look-ahead exactly when one thread would cap it.
+constexpr double kFirstRoundBoxCap = kFirstTurn;
 
 std::string number(double x) {
   char text[32];
@@ -66,19 +72,23 @@ SubCheckpoint Race::checkpoint() const {
 }
 
 Search& Race::run_turn(int threads) {
-  Search& search = *racers_[at_.next]->search;
+  if (racers_.size() > 1 && at_.target < 0) start_turn();
+  Search& search = *racers_[running()]->search;
   if (racers_.size() == 1) {
     search.run(threads);
   } else {
-    if (at_.target < 0) start_turn();
     // Every thread on this candidate's turn: the turn still ends where one thread ends it
     // (look-ahead mode, lookahead.hpp), so the race and its winner do not depend on
     // the thread count.
-    search.run(threads, at_.target);
+    search.run(threads, at_.target, at_.turn == kFirstTurn ? kFirstRoundBoxCap : 0);
+    if (search.capped())
+      at_.choices.push_back("turn " + number(at_.turn) + ": " + name_of(running()) + " stopped at a box costing over " +
+                            number(kFirstRoundBoxCap) + " (the first round's cap; " + describe(search) +
+                            "): it shrinks that box again next round");
   }
   if (search.complete() && at_.winner < 0 && racers_.size() > 1)
-    at_.choices.push_back(name_of(at_.next) + " finished its search first (" + describe(search) + "): its boxes are the result");
-  if (search.complete()) at_.winner = static_cast<int>(at_.next);
+    at_.choices.push_back(name_of(running()) + " finished its search first (" + describe(search) + "): its boxes are the result");
+  if (search.complete()) at_.winner = static_cast<int>(running());
   return search;
 }
 
@@ -91,7 +101,14 @@ void Race::start_turn() {
     racers_[lender_]->search->unlend();
     lender_ = -1;
   }
-  at_.target = target_of(at_.next);
+  at_.target = target_of(running());
+}
+
+// The lead runs first in each round: when it finishes in its turn, the others' shares of that
+// round (a quarter of the lead's turn with three candidates) are never spent.
+size_t Race::running() const {
+  if (at_.next == 0) return at_.lead;
+  return at_.next <= at_.lead ? at_.next - 1 : at_.next;
 }
 
 void Race::next_turn() {
@@ -113,7 +130,8 @@ void Race::pick_lead() {
   for (size_t k = 0; k < racers_.size(); ++k) {
     if (k == held) continue;
     why += "; " + name_of(k) + " " + describe(*racers_[k]->search) +
-           (ahead_of(at_.progress[held], now[k]) < 0 ? ", behind on the tree at equal work"
+           (now[k].work <= 0                           ? ", no work counted yet"
+            : ahead_of(at_.progress[held], now[k]) < 0 ? ", behind on the tree at equal work"
             : cheaper(now[held], now[k])             ? ", 2x cheaper"
                                                      : ", not 2x cheaper");
   }
@@ -137,9 +155,9 @@ bool Race::lend_asked(size_t k) {
 }
 
 void Race::lend(size_t subproblem) {
-  Racer& r = *racers_[at_.next];
+  Racer& r = *racers_[running()];
   if (lending_ && lending_->asked() && lending_->lend(subproblem, r.pruning.strategy, *r.search))
-    lender_ = static_cast<int>(at_.next);
+    lender_ = static_cast<int>(running());
 }
 
 void Race::end_lending() {

@@ -3,9 +3,9 @@
 // work (boxes of propagation, search.hpp), until one finishes; its boxes are the result, as if
 // it had run alone. Turns double. After a first turn each, the candidate whose projected total
 // work (work / share of the search tree resolved) is clearly smaller (lead.hpp) gets the turn
-// and the others a share of it, so a wrong projection costs a bounded factor. A turn ends at the box where a
-// one-thread depth-first search would end it, whatever the thread count (Search::run), so the
-// race is deterministic. One candidate is a race of one: its search runs to the end.
+// and the others a share of it, so a wrong projection costs a bounded factor; the lead runs
+// first. A turn ends at the box where a one-thread depth-first search would end it, whatever
+// the thread count (Search::run), so the race is deterministic. One candidate is a race of one: its search runs to the end.
 //
 // Spread over processes, the leader lends boxes (share.hpp): their records come back, so the
 // race goes as in one process.
@@ -71,6 +71,7 @@ class Race {
  private:
   void start_turn();
   void pick_lead();
+  size_t running() const;  // the candidate whose turn it is
   std::string name_of(size_t k) const;
   double target_of(size_t k) const;
   std::vector<std::unique_ptr<Racer>> racers_;

@@ -54,7 +54,7 @@ void SearchCore::commit(Processed&& p) {
   if (tallies.volume_outside) tallies.volume_outside->store(1 - c.volume_pending, std::memory_order_relaxed);
 }
 
-void SearchCore::run(int threads, double work_limit) {
+void SearchCore::run(int threads, double work_limit, double box_cap) {
   const Params& params = setup.params;
   std::mutex m;
   std::condition_variable cv;
@@ -89,12 +89,19 @@ void SearchCore::run(int threads, double work_limit) {
       params.order == Order::depth_first ? pending.pop_back() : pending.pop_front();
       ++busy;
       lock.unlock();
-      Processed p = process(c, certify, std::move(node), cut, stop);
+      Processed p = process(c, certify, std::move(node), cut, stop, box_cap);
       lock.lock();
       --busy;
-      if (p.verdict == Verdict::stopped) {
-        control.stopped = true;
-        pending.push_back(std::move(p.node));
+      if (p.verdict == Verdict::capped || p.verdict == Verdict::stopped) {
+        // Back where it was taken from, so the next run takes it first.
+        if (p.verdict == Verdict::capped)
+          control.capped = paused = true;
+        else
+          control.stopped = true;
+        if (params.order == Order::depth_first)
+          pending.push_back(std::move(p.node));
+        else
+          pending.push_front(std::move(p.node));
         cv.notify_all();
         break;
       }
@@ -143,16 +150,16 @@ Search::Search(const Box& start, prune::Sequence& contractor, std::vector<int> s
 
 Search::~Search() = default;
 
-bool Search::run(int threads, double work_limit) {
+bool Search::run(int threads, double work_limit, double box_cap) {
   const auto t0 = std::chrono::steady_clock::now();
   detail::SearchCore& core = s_->core;
-  core.control.paused = false;
+  core.control.paused = core.control.capped = false;
   // A run to a work limit stops where one thread stops it: depth-first with the threads in
   // look-ahead mode, breadth-first (where committing in order would serialise) on one thread.
   if ((threads > 1 || s_->lookahead.lent()) && work_limit > 0 && core.setup.params.order == Order::depth_first)
-    s_->lookahead.run(core, threads, work_limit);
+    s_->lookahead.run(core, threads, work_limit, box_cap);
   else
-    core.run(work_limit > 0 ? 1 : threads, work_limit);
+    core.run(work_limit > 0 ? 1 : threads, work_limit, work_limit > 0 ? box_cap : 0);
   core.committed.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return core.control.stopped || complete();
 }
@@ -166,6 +173,7 @@ double Search::tree_done() const {
   return 1 - pending;
 }
 bool Search::paused() const { return s_->core.control.paused; }
+bool Search::capped() const { return s_->core.control.capped; }
 void Search::pause_when(std::function<bool()> request) { s_->core.control.pause_request = std::move(request); }
 
 void Search::report_to(std::atomic<long>* pending, std::atomic<double>* volume_outside) {

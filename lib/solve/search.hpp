@@ -48,7 +48,9 @@ class Search final : public Lender {
          Budget& budget, Certifier* certifier = nullptr, const Bisector* bisector = nullptr);
   ~Search() override;
   // True when this search will do no more: it is complete, or the budget stopped it.
-  bool run(int threads = 1, double work_limit = 0);  // 0: no limit
+  // `box_cap` (with a work limit; 0: none): the run also ends before a box whose own work
+  // passes it, and the box stays pending, as taken (capped() true).
+  bool run(int threads = 1, double work_limit = 0, double box_cap = 0);  // 0: no limit
   bool complete() const;  // no box pending: every box resolved
   double work() const;
   // Progress, as the share of the start box resolved (empty or solutions): by its volume over
@@ -61,6 +63,7 @@ class Search final : public Lender {
   // search can be saved and resumed as if it had never stopped.
   void pause_when(std::function<bool()> request);
   bool paused() const;
+  bool capped() const;
   // Live figures for a progress line, stored after every box: pending boxes and the share of
   // the volume outside them.
   void report_to(std::atomic<long>* pending, std::atomic<double>* volume_outside);

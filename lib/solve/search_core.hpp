@@ -27,6 +27,7 @@ struct RunControl {
   bool stopped = false;  // by the budget
   std::function<bool()> pause_request;
   bool paused = false;  // the last run() returned on a pause request
+  bool capped = false;  // the last run() ended at a box that passed its cap
 };
 
 // Live figures for a progress line, stored after every commit (none when null).
@@ -58,14 +59,15 @@ struct SearchCore {
   Records records;
   Crew crew;
 
-  Processed process(prune::Sequence& c, Certifier* certify, Node node, bool& cut, const std::function<bool()>& stop) {
-    return detail::process(setup, log, c, certify, std::move(node), cut, stop);
+  Processed process(prune::Sequence& c, Certifier* certify, Node node, bool& cut, const std::function<bool()>& stop,
+                    double box_cap) {
+    return detail::process(setup, log, c, certify, std::move(node), cut, stop, box_cap);
   }
   // Counts a processed box, lists its halves or keeps its solution (and its record).
   void commit(Processed&& p);
   // Runs boxes in the list's order on `threads` threads, to the end, the budget, a pause or
-  // (on one thread) `work_limit`.
-  void run(int threads, double work_limit);
+  // (on one thread) `work_limit` or a box that passes `box_cap` (process()).
+  void run(int threads, double work_limit, double box_cap);
   // Runs `worker` on this thread with the search's own contractor and on threads - 1 more
   // with the crew's, then adds their counters to the contractor's.
   void on_threads(int threads, const std::function<void(prune::Sequence&, Certifier*)>& worker);

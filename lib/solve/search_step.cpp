@@ -17,9 +17,10 @@ namespace {
 // papers/decisions/search.md, "NaN bounds").
 Verdict shrink(Box& box, prune::Sequence::Backoff& backoff, prune::Sequence& contractor, Certifier* certifier,
                std::span<const int> dims, const Params& params, const bool& cut, const std::function<bool()>& stop,
-               Stats& stats) {
+               const std::function<bool()>& over_cap, Stats& stats) {
   while (true) {
     if (stop()) return Verdict::stopped;
+    if (over_cap()) return Verdict::capped;
     Box before = box;
     stats.shrinks++;
     const prune::Outcome outcome = contractor.contract(box, backoff);
@@ -55,21 +56,22 @@ Verdict verdict_of(char outcome) {
 }  // namespace
 
 Processed process(const Setup& setup, const LogPlace& log, prune::Sequence& c, Certifier* certify, Node node,
-                  bool& cut, const std::function<bool()>& stop) {
+                  bool& cut, const std::function<bool()>& stop, double box_cap) {
   Processed p;
   const std::vector<prune::Counters> counters_before = c.counters();
   Node taken = node;
   p.stats.processed++;
   p.volume = volume_ratio(setup.start, node.box, setup.split_dims);
   const double operations = c.operations();
+  const auto over_cap = [&] { return box_cap > 0 && (c.operations() - operations) / c.operations_per_box() > box_cap; };
   const auto shrink_start = log.log ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-  p.verdict = shrink(node.box, node.backoff, c, certify, setup.split_dims, setup.params, cut, stop, p.stats);
+  p.verdict = shrink(node.box, node.backoff, c, certify, setup.split_dims, setup.params, cut, stop, over_cap, p.stats);
   const Verdict v = p.verdict;
-  if (log.log && v != Verdict::stopped)
+  if (log.log && v != Verdict::stopped && v != Verdict::capped)
     log.log->add({log.subproblem, log.candidate, node.path, v == Verdict::empty ? 'e' : v == Verdict::split ? 'x' : 's',
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - shrink_start).count()});
   p.work = std::max(1.0, (c.operations() - operations) / c.operations_per_box()) + (v == Verdict::solution ? kSolutionWork : 0);
-  if (v == Verdict::stopped) {
+  if (v == Verdict::stopped || v == Verdict::capped) {
     c.set_counters(counters_before);  // its work undone in the counts
     p.node = std::move(taken);
     p.stats = {};

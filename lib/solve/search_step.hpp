@@ -37,7 +37,9 @@ struct LogPlace {
 
 // stopped: a limit or an interrupt came while the box was being shrunk; it goes back to the
 // list as it was taken, so a resumed search does exactly what an unbroken one would.
-enum class Verdict { empty, certified, solution, split, stopped };
+// capped: the box's own work passed the run's cap; it goes back the same way, and the run
+// ends there.
+enum class Verdict { empty, certified, solution, split, stopped, capped };
 
 // One box shrunk, and what its turn in the search does with it.
 struct Processed {
@@ -52,8 +54,10 @@ struct Processed {
 
 // Shrinks `node` with `c` (and `certify`, when given) and bisects it when it is to be split.
 // `stop` is asked between the contractor's costly steps; `cut` is set when it said stop.
+// `box_cap` > 0: the box is capped once its work (boxes of propagation, search.hpp) passes
+// it, asked between passes of the contractors, so whether it is depends on the box alone.
 Processed process(const Setup& setup, const LogPlace& log, prune::Sequence& c, Certifier* certify, Node node,
-                  bool& cut, const std::function<bool()>& stop);
+                  bool& cut, const std::function<bool()>& stop, double box_cap);
 
 // A processed box as a record for its lender, and a record as the box its lender would have
 // processed (the halves of a split made again, as one process makes them).
