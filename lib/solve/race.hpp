@@ -5,7 +5,8 @@
 // work (work / share of the search tree resolved) is clearly smaller (lead.hpp) gets the turn
 // and the others a share of it, so a wrong projection costs a bounded factor; the lead runs
 // first. A turn ends at the box where a one-thread depth-first search would end it, whatever
-// the thread count (Search::run), so the race is deterministic. One candidate is a race of one: its search runs to the end.
+// the thread count (Search::run), so the race is deterministic. One candidate is a race of
+// one: its search runs to the end.
 //
 // Spread over processes, the leader lends boxes (share.hpp): their records come back, so the
 // race goes as in one process.

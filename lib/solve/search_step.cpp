@@ -17,10 +17,12 @@ namespace {
 // papers/decisions/search.md, "NaN bounds").
 Verdict shrink(Box& box, prune::Sequence::Backoff& backoff, prune::Sequence& contractor, Certifier* certifier,
                std::span<const int> dims, const Params& params, const bool& cut, const std::function<bool()>& stop,
-               const std::function<bool()>& over_cap, Stats& stats) {
+               double box_cap, Stats& stats) {
+  const double operations = contractor.operations();
   while (true) {
     if (stop()) return Verdict::stopped;
-    if (over_cap()) return Verdict::capped;
+    if (box_cap > 0 && (contractor.operations() - operations) / contractor.operations_per_box() > box_cap)
+      return Verdict::capped;
     Box before = box;
     stats.shrinks++;
     const prune::Outcome outcome = contractor.contract(box, backoff);
@@ -63,9 +65,8 @@ Processed process(const Setup& setup, const LogPlace& log, prune::Sequence& c, C
   p.stats.processed++;
   p.volume = volume_ratio(setup.start, node.box, setup.split_dims);
   const double operations = c.operations();
-  const auto over_cap = [&] { return box_cap > 0 && (c.operations() - operations) / c.operations_per_box() > box_cap; };
   const auto shrink_start = log.log ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-  p.verdict = shrink(node.box, node.backoff, c, certify, setup.split_dims, setup.params, cut, stop, over_cap, p.stats);
+  p.verdict = shrink(node.box, node.backoff, c, certify, setup.split_dims, setup.params, cut, stop, box_cap, p.stats);
   const Verdict v = p.verdict;
   if (log.log && v != Verdict::stopped && v != Verdict::capped)
     log.log->add({log.subproblem, log.candidate, node.path, v == Verdict::empty ? 'e' : v == Verdict::split ? 'x' : 's',
