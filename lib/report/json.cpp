@@ -139,9 +139,11 @@ json result_json(const std::string& case_name, const std::string& case_file,
   if (!result.subproblems.empty() && result.subproblems[0].race.size() > 1) {
     json race = json::array();  // "auto": the candidates raced, each one's work, the winner last
     for (auto& [name, work] : result.subproblems[0].race) race.push_back({{"strategy", name}, {"work", work}});
-    j["race_choices"] = result.subproblems[0].race_choices;
     j["race"] = race;
   }
+  // A race stopped by a limit has no winner, but its choices still say where the work went.
+  if (!result.subproblems.empty() && !result.subproblems[0].race_choices.empty())
+    j["race_choices"] = result.subproblems[0].race_choices;
   j["complete"] = result.complete;
   if (!result.complete) j["stop_reason"] = result.stop_reason;
   j["pending_boxes"] = result.pending_boxes;

@@ -389,6 +389,20 @@ TEST_CASE("a run stopped by its CPU-time limit is incomplete and says how to go 
   CHECK(r.out.find("linkbox resume " + out) != std::string::npos);  // the run kept a checkpoint beside its JSON
 }
 
+TEST_CASE("a race stopped by a limit still says why its lead went where it did", "[run_control][cli]") {
+  // No candidate won, so there is no `race` (each one's work, the winner last), but the
+  // choices made before the limit are what a user needs to pick a strategy by hand.
+  const std::string out = tmp("race-limit.json");
+  REQUIRE(run("solve " + src("cases/benchmarks/eco9.toml") + " --quiet --max-boxes 10000 --json " + out).code == 5);
+  const auto j = read(out);
+  CHECK_FALSE(j.contains("race"));
+  REQUIRE(j.contains("race_choices"));
+  REQUIRE(j["race_choices"].size() >= 1);
+  for (const auto& line : j["race_choices"])
+    for (const char* name : {"hc4,newton work", "hc4,newton/lp work", "hc4,newton,taylor work"})
+      CHECK(line.get<std::string>().find(name) != std::string::npos);
+}
+
 TEST_CASE("a root whose Jacobian is singular is named so, with counts that cannot read as variables", "[run_control][cli]") {
   // x^2 + y^2 = 0 and x^2 = y^3: the one real root is the origin, where every term has degree
   // >= 2, so the Jacobian vanishes there.
