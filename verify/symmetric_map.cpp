@@ -96,38 +96,47 @@ bool not_identity(const SymmetricLoop& loop, const Box& u) {
   return -1 < q.lower() && q.upper() < 1;
 }
 
-// Whether the arc `a` (certified) misses the U of a piece inside its box, or the member (in
-// output variables) the piece was cut from: over each slice of the piece's parameter range,
-// every solution in the arc's box lies in the slice's Krawczyk image at v = 0, and each image
-// misses the piece's other two sides or, carried to the outputs, the member.
-bool arc_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u, const Box& member) {
+// Whether the slice [lo, hi] of arc `a`'s parameter holds no solution of the arc's box inside
+// the piece's U and the member (in output variables): Krawczyk steps shrink the slice to its
+// image at v = 0 (every solution in the slice stays in each image), which must miss U's other
+// two sides or, carried to the outputs, the member. A slice that meets them is halved, down to
+// `depth` more levels: an arc passing just beside the member (a box beside the curve's
+// extreme, whose (u, v) hull reaches the curve) is told apart on thinner slices.
+bool slice_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u, const Box& member, double lo,
+                  double hi, int depth) {
   const int p = a.parameter;
   const auto y = others(p);
-  Interval range;
-  if (!intersect(u[p], a.box[p], range)) return true;
-  constexpr int kSlices = 8;
-  const double step = width_up(range) / kSlices;
-  for (int i = 0; i < kSlices; ++i) {
-    Box slice = a.box;
-    const double lo = range.lower() + i * step;
-    slice[p] = Interval(lo, i + 1 == kSlices ? range.upper() : lo + step);
-    // Krawczyk steps: the slice's solutions stay in each image, so the slice shrinks to it.
-    bool none = false;
-    for (int step = 0; step < 4 && !none; ++step) {
-      bool interior = false;
-      const Box image = reduced_image(loop, slice, p, Eigen::MatrixXd(a.preconditioner), interior);
-      for (int k = 0; k < 2 && !none; ++k) {
-        if (!is_finite(image[k])) return false;
-        none = !intersect(slice[y[k]], image[k], slice[y[k]]);
-      }
+  Box slice = a.box;
+  slice[p] = Interval(lo, hi);
+  for (int step = 0; step < 4; ++step) {
+    bool interior = false;
+    const Box image = reduced_image(loop, slice, p, Eigen::MatrixXd(a.preconditioner), interior);
+    for (int k = 0; k < 2; ++k) {
+      if (!is_finite(image[k])) return false;
+      if (!intersect(slice[y[k]], image[k], slice[y[k]])) return true;
     }
-    if (none) continue;
-    const auto meets = [](const Interval& x, const Interval& z) { return x.lower() <= z.upper() && z.lower() <= x.upper(); };
-    if (!meets(slice[y[0]], u[y[0]]) || !meets(slice[y[1]], u[y[1]])) continue;
-    Box on_arc(6, Interval(0.0));  // the slice's solutions: (t, y) at v = 0
-    for (int k = 0; k < 3; ++k) on_arc[k] = slice[k];
-    if (overlaps(loop.to_output(on_arc), member)) return false;
   }
+  const auto meets = [](const Interval& x, const Interval& z) { return x.lower() <= z.upper() && z.lower() <= x.upper(); };
+  if (!meets(slice[y[0]], u[y[0]]) || !meets(slice[y[1]], u[y[1]])) return true;
+  Box on_arc(6, Interval(0.0));  // the slice's solutions: (t, y) at v = 0
+  for (int k = 0; k < 3; ++k) on_arc[k] = slice[k];
+  if (!overlaps(loop.to_output(on_arc), member)) return true;
+  if (depth == 0) return false;
+  const double mid = lo + (hi - lo) / 2;
+  return slice_misses(loop, a, u, member, lo, mid, depth - 1) && slice_misses(loop, a, u, member, mid, hi, depth - 1);
+}
+
+// Whether the arc `a` (certified) misses the U of a piece inside its box, or the member the
+// piece was cut from, over each of 8 slices of the piece's parameter range (slice_misses).
+bool arc_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u, const Box& member) {
+  Interval range;
+  if (!intersect(u[a.parameter], a.box[a.parameter], range)) return true;
+  constexpr int kSlices = 8, kDeeper = 4;
+  const double step = width_up(range) / kSlices;
+  // Each slice ends where the next begins (the same double), so together they cover the range.
+  const auto edge = [&](int i) { return i == kSlices ? range.upper() : range.lower() + i * step; };
+  for (int i = 0; i < kSlices; ++i)
+    if (!slice_misses(loop, a, u, member, edge(i), edge(i + 1), kDeeper)) return false;
   return true;
 }
 

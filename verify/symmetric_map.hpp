@@ -20,9 +20,9 @@
 namespace linkbox::verify {
 
 // The width (in the search's variables) a member should have before it is mapped, what
-// `--narrow` should be given: wider pieces neither exclude nor certify, so the search's
-// contractors narrow the boxes first (solve/narrow.hpp).
-constexpr double kSymmetricPiece = 0.01;
+// `--narrow` should be given: wider pieces neither exclude nor certify, so the boxes are
+// narrowed first (solve/narrow.hpp).
+constexpr double kSymmetricPiece = 0.02;
 // Members wider than this (output variables) are not mapped: their pieces would not resolve
 // within the bisection depth.
 constexpr double kSymmetricMember = 0.2;

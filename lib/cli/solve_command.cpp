@@ -54,7 +54,7 @@ void add_search_flags(CLI::App& cmd, SolveCommand& s) {
   cmd.add_option("--rho", o.params.rho, "split when volume ratio after a shrink exceeds rho, 0 < R <= 1 (default: 0.99 on spherical cases, the papers' value; 0.8 elsewhere)")
       ->check(number(0, true, 1))
       ->type_name("R");
-  cmd.add_option("--narrow", o.params.narrow, "after the search, narrow uncertified solution boxes to width W with the same contractors, for curve maps that need narrow boxes (default: 0.01 on a symmetric six-joint loop, whose curve map needs it; 0 elsewhere)")
+  cmd.add_option("--narrow", o.params.narrow, "after the search, narrow uncertified solution boxes to width W (by hc4,newton,taylor, whatever --prune), for curve maps that need narrow boxes (default: 0.02 on a symmetric six-joint loop, whose curve map needs it; 0 elsewhere)")
       ->check(number(0, false))
       ->type_name("W");
   cmd.add_option("--order", o.params.order, "depth- or breadth-first order of the boxes (default dfs)")

@@ -1,9 +1,9 @@
 #pragma once
 // A curve's solution boxes are as wide as sigma, and a certified map of the curve
 // (verify/symmetric_map.hpp) needs pieces much narrower than the case's sigma: where a piece
-// is wide, its interval tests neither exclude nor certify. The search's own contractors narrow
-// each uncertified solution box instead: the box is searched again with sigma = `narrow`, and
-// its solution boxes replace it. Only what the contractors prove empty is dropped (as in the
+// is wide, its interval tests neither exclude nor certify. So each uncertified solution box is
+// searched again with sigma = `narrow` by `contractor` (subproblem.cpp picks it), and its
+// solution boxes replace it. Only what the contractors prove empty is dropped (as in the
 // search), so the boxes still cover every solution the original box held.
 #include "formulate/formulation.hpp"
 #include "prune/sequence.hpp"

@@ -14,8 +14,8 @@ struct Params {
   double time_limit = 0;  // seconds; 0 = none
   double cpu_limit = 0;   // seconds of the process's CPU time (every thread); 0 = none
   long max_boxes = 0;     // processed boxes over the whole run; 0 = none
-  // > 0: after a complete search, uncertified solution boxes are narrowed to this width by
-  // the same contractors (solve/narrow.hpp), for a curve map that needs narrow pieces.
+  // > 0: after a complete search, uncertified solution boxes are narrowed to this width
+  // (solve/narrow.hpp), for a curve map that needs narrow pieces.
   double narrow = 0;
   // When set and non-zero (a signal arrived), the run stops as if a limit were reached, with
   // stop reason "interrupted".

@@ -84,7 +84,7 @@ SubResult finish_subproblem(const formulate::Formulation& formulation, size_t i,
   s.race = std::move(merged.race);
   s.race_choices = std::move(merged.race_choices);
   const double work = r.search.work();
-  finish(r.sub, r.settings.params, budget, *r.ran, r.bisector, r.search.result(), work, s);
+  finish(r.sub, r.settings, budget, *r.ran, r.bisector, r.search.result(), work, s);
   return s;
 }
 

@@ -19,15 +19,29 @@ void describe(const formulate::SubProblem& sub, size_t i, SubResult& s) {
   s.variables = static_cast<int>(sub.system.variables.size());
 }
 
-void finish(const formulate::SubProblem& sub, const Params& params, Budget& budget, Racer& ran,
+namespace {
+
+// The narrowing's contractors (narrow.hpp), whatever the search ran: around a smooth arc a
+// box's solutions lie near a line, which a linear relaxation in the system's own variables
+// encloses tightly and propagation, one variable at a time, does not. Thinner pieces are what
+// the curve map needs, so it resolves them at twice the width.
+Pruning narrowing(const SubSettings& settings, const formulate::SubProblem& sub) {
+  using K = ContractorKind;
+  return make_pruning(Strategy({{K::hc4, K::newton, K::taylor}}), settings.strategy, sub);
+}
+
+}  // namespace
+
+void finish(const formulate::SubProblem& sub, const SubSettings& settings, Budget& budget, Racer& ran,
             const Bisector& bisector, Result r, double work, SubResult& s) {
+  const Params& params = settings.params;
   s.strategy = ran.pruning.strategy;
   s.complete = r.complete;
   s.rho = params.rho;
   // Only Newton tells the certifier where to look; without it a refinement cannot certify.
   if (r.complete && ran.pruning.strategy.uses(ContractorKind::newton))
     refine(r, work, sub, params, budget, *ran.pruning.sequence, ran.certifier, bisector);
-  if (r.complete) narrow(r, sub, params, budget, *ran.pruning.sequence, bisector);
+  if (r.complete && params.narrow > 0) narrow(r, sub, params, budget, *narrowing(settings, sub).sequence, bisector);
   s.solutions = std::move(r.solutions);
   s.certified = std::move(r.certified);
   for (auto& b : s.solutions)
@@ -130,7 +144,7 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
     *piece = {i, ran.pruning.strategy, ran.search->state(), ran.pruning.sequence->counters(), s.race, s.race_choices};
     return false;
   }
-  finish(sub, settings.params, run.budget, ran, bisector, ran.search->result(), ran.search->work(), s);
+  finish(sub, settings, run.budget, ran, bisector, ran.search->result(), ran.search->work(), s);
   // A refinement cut short by a limit is done again on resuming; a whole one is final.
   if (s.complete && !run.budget.exhausted()) {
     SubCheckpoint done;

@@ -35,8 +35,9 @@ struct Shared {
 void describe(const formulate::SubProblem& sub, size_t i, SubResult& s);
 
 // A sub-problem's result from its search's (or merged searches') result `r`, which took `work`:
-// refined when complete and Newton can certify, residuals, the strategy's counters.
-void finish(const formulate::SubProblem& sub, const Params& params, Budget& budget, Racer& ran,
+// refined when complete and Newton can certify, narrowed when asked (narrow.hpp), residuals,
+// the strategy's counters.
+void finish(const formulate::SubProblem& sub, const SubSettings& settings, Budget& budget, Racer& ran,
             const Bisector& bisector, Result r, double work, SubResult& s);
 
 // Searches sub-problem i from its start, or from `resume`. Returns false (and fills `piece`)

@@ -251,6 +251,15 @@ TEST_CASE("the mobile 6R's map is the same under the lp strategy at sigma 0.03",
   require_one_closed_curve(m);
 }
 
+TEST_CASE("the mobile 6R's map is the same when propagation alone found the boxes", "[verify][map][slow]") {
+  // hc4,newton leaves boxes beside the curve's extreme in theta1 whose (u, v) hulls reach the
+  // curve: an arc found there lies outside its member, which the map must tell on slices thin
+  // enough, or a lone cluster is left holding an arc with no continuation.
+  const std::string file = "cases/linkages/6r-mobile.toml";
+  const Mapped m = solve_text(read(file), file, "hc4,newton", 0.1, verify::kSymmetricPiece);
+  require_one_closed_curve(m);
+}
+
 TEST_CASE("with no flags a symmetric loop is narrowed and mapped: cyclohexane's chairs and boat loop",
           "[verify][map][cli][slow]") {
   const std::string out = test::scratch("cyclohexane.json");
