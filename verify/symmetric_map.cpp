@@ -96,17 +96,18 @@ bool not_identity(const SymmetricLoop& loop, const Box& u) {
   return -1 < q.lower() && q.upper() < 1;
 }
 
-// Whether the slice [lo, hi] of arc `a`'s parameter holds no solution of the arc's box inside
-// the piece's U and the member (in output variables): Krawczyk steps shrink the slice to its
-// image at v = 0 (every solution in the slice stays in each image), which must miss U's other
-// two sides or, carried to the outputs, the member. A slice that meets them is halved, down to
-// `depth` more levels: an arc passing just beside the member (a box beside the curve's
-// extreme, whose (u, v) hull reaches the curve) is told apart on thinner slices.
-bool slice_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u, const Box& member, double lo,
-                  double hi, int depth) {
+// Whether the slice [lo, hi] of arc `a`'s parameter holds no solution of `from` (the arc's
+// box, or a wider slice's image) inside the piece's U and the member (in output variables):
+// Krawczyk steps shrink the slice to its image at v = 0 (every solution in the slice stays in
+// each image), which must miss U's other two sides or, carried to the outputs, the member. A
+// slice that meets them is halved, down to `depth` more levels: an arc passing just beside
+// the member (a box beside the curve's extreme, whose (u, v) hull reaches the curve) is told
+// apart on thinner slices.
+bool slice_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u, const Box& member, const Box& from,
+                  double lo, double hi, int depth) {
   const int p = a.parameter;
   const auto y = others(p);
-  Box slice = a.box;
+  Box slice = from;
   slice[p] = Interval(lo, hi);
   for (int step = 0; step < 4; ++step) {
     bool interior = false;
@@ -123,7 +124,8 @@ bool slice_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u,
   if (!overlaps(loop.to_output(on_arc), member)) return true;
   if (depth == 0) return false;
   const double mid = lo + (hi - lo) / 2;
-  return slice_misses(loop, a, u, member, lo, mid, depth - 1) && slice_misses(loop, a, u, member, mid, hi, depth - 1);
+  return slice_misses(loop, a, u, member, slice, lo, mid, depth - 1) &&
+         slice_misses(loop, a, u, member, slice, mid, hi, depth - 1);
 }
 
 // Whether the arc `a` (certified) misses the U of a piece inside its box, or the member the
@@ -136,7 +138,7 @@ bool arc_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u, c
   // Each slice ends where the next begins (the same double), so together they cover the range.
   const auto edge = [&](int i) { return i == kSlices ? range.upper() : range.lower() + i * step; };
   for (int i = 0; i < kSlices; ++i)
-    if (!slice_misses(loop, a, u, member, edge(i), edge(i + 1), kDeeper)) return false;
+    if (!slice_misses(loop, a, u, member, a.box, edge(i), edge(i + 1), kDeeper)) return false;
   return true;
 }
 
