@@ -159,6 +159,7 @@ json result_out(const SubResult& r) {
           {"pending", boxes_out(r.pending)},
           {"volume_left", num(r.volume_left)},
           {"counters", counters_out(r.counters)},
+          {"narrow_counters", counters_out(r.narrow_counters)},
           {"strategy", strategy_out(r.strategy)},
           {"bisect", r.bisect},
           {"race", race},
@@ -178,6 +179,7 @@ SubResult result_in(const json& j) {
   r.pending = boxes_in(j.at("pending"));
   r.volume_left = num(j.at("volume_left"));
   r.counters = counters_in(j.at("counters"));
+  if (j.contains("narrow_counters")) r.narrow_counters = counters_in(j.at("narrow_counters"));
   r.strategy = strategy_in(j.at("strategy"));
   r.bisect = j.at("bisect");
   for (auto& x : j.at("race")) r.race.push_back({x.at(0).get<std::string>(), num(x.at(1))});

@@ -41,6 +41,8 @@ struct SubResult {
   std::vector<Box> pending;
   double volume_left = 0;
   std::vector<prune::Counters> counters;  // per contractor of the strategy
+  // Per contractor of narrowing_strategy() when the boxes were narrowed (narrow.hpp), else empty.
+  std::vector<prune::Counters> narrow_counters;
   Strategy strategy;                      // what ran ("auto" resolved; none when no search did)
   std::string bisect;                     // the bisection rule ("auto" resolved)
   double rho = 0;                         // the rho used (auto resolved)

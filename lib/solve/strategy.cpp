@@ -177,6 +177,11 @@ std::string Strategy::text() const {
   return t;
 }
 
+Strategy narrowing_strategy() {
+  using K = ContractorKind;
+  return Strategy({{K::hc4, K::newton, K::taylor}});
+}
+
 std::vector<Strategy> candidates(const Strategy& strategy, const formulate::SubProblem& sub) {
   if (!strategy.is_auto()) return {strategy};
   using K = ContractorKind;

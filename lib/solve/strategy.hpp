@@ -42,4 +42,9 @@ class Strategy {
   std::vector<Stage> stages_;
 };
 
+// What narrows a curve's boxes after the search (solve/narrow.hpp), whatever the search ran:
+// around a smooth arc a box's solutions lie near a line, which a linear relaxation in the
+// system's own variables encloses tightly and propagation, one variable at a time, does not.
+Strategy narrowing_strategy();
+
 }  // namespace linkbox::solve

@@ -3,6 +3,8 @@
 #include "solve/narrow.hpp"
 #include "solve/refine.hpp"
 
+#include <algorithm>
+
 namespace linkbox::solve {
 
 SubSettings settings_for(const RunOptions& options, const formulate::SubProblem& sub) {
@@ -19,19 +21,6 @@ void describe(const formulate::SubProblem& sub, size_t i, SubResult& s) {
   s.variables = static_cast<int>(sub.system.variables.size());
 }
 
-namespace {
-
-// The narrowing's contractors (narrow.hpp), whatever the search ran: around a smooth arc a
-// box's solutions lie near a line, which a linear relaxation in the system's own variables
-// encloses tightly and propagation, one variable at a time, does not. Thinner pieces are what
-// the curve map needs, so it resolves them at twice the width.
-Pruning narrowing(const SubSettings& settings, const formulate::SubProblem& sub) {
-  using K = ContractorKind;
-  return make_pruning(Strategy({{K::hc4, K::newton, K::taylor}}), settings.strategy, sub);
-}
-
-}  // namespace
-
 void finish(const formulate::SubProblem& sub, const SubSettings& settings, Budget& budget, Racer& ran,
             const Bisector& bisector, Result r, double work, SubResult& s) {
   const Params& params = settings.params;
@@ -41,7 +30,13 @@ void finish(const formulate::SubProblem& sub, const SubSettings& settings, Budge
   // Only Newton tells the certifier where to look; without it a refinement cannot certify.
   if (r.complete && ran.pruning.strategy.uses(ContractorKind::newton))
     refine(r, work, sub, params, budget, *ran.pruning.sequence, ran.certifier, bisector);
-  if (r.complete && params.narrow > 0) narrow(r, sub, params, budget, *narrowing(settings, sub).sequence, bisector);
+  if (r.complete && params.narrow > 0) {
+    const Pruning fine = make_pruning(narrowing_strategy(), settings.strategy, sub);
+    narrow(r, sub, params, budget, *fine.sequence, bisector);
+    auto counters = fine.sequence->counters();
+    if (std::any_of(counters.begin(), counters.end(), [](const prune::Counters& c) { return c.calls > 0; }))
+      s.narrow_counters = std::move(counters);
+  }
   s.solutions = std::move(r.solutions);
   s.certified = std::move(r.certified);
   for (auto& b : s.solutions)

@@ -17,17 +17,17 @@ void add_named(CaseResult& result, const std::string& name, const prune::Counter
   if (counters) result.counters[at - result.contractor_names.begin()] += *counters;
 }
 
-// By name: sub-problems may have run different strategies ("auto" chooses per sub-problem).
-// A system with links ran the "links" contractor before the strategy's (make_pruning): one
-// member more than the strategy names.
-void add_counters(CaseResult& result, const SubResult& s) {
+// By name: sub-problems may have run different strategies ("auto" chooses per sub-problem),
+// and the narrowing its own. A system with links ran the "links" contractor before the
+// strategy's (make_pruning): one member more than the strategy names.
+void add_counters(CaseResult& result, const Strategy& strategy, const std::vector<prune::Counters>& counters) {
   size_t members = 0;
-  for (auto& stage : s.strategy.stages()) members += stage.size();
+  for (auto& stage : strategy.stages()) members += stage.size();
   size_t k = 0;
-  if (s.counters.size() == members + 1) add_named(result, "links", &s.counters[k++]);
-  for (auto& stage : s.strategy.stages())
+  if (counters.size() == members + 1) add_named(result, "links", &counters[k++]);
+  for (auto& stage : strategy.stages())
     for (ContractorKind kind : stage) {
-      add_named(result, name_of(kind), k < s.counters.size() ? &s.counters[k] : nullptr);
+      add_named(result, name_of(kind), k < counters.size() ? &counters[k] : nullptr);
       ++k;
     }
 }
@@ -41,7 +41,8 @@ void summarise(CaseResult& result, const RunOptions& options, const Budget& budg
     result.complete = result.complete && s.complete;
     result.pending_boxes += static_cast<long>(s.pending.size());
     result.volume_left += s.volume_left / static_cast<double>(n);
-    add_counters(result, s);
+    add_counters(result, s.strategy, s.counters);
+    if (!s.narrow_counters.empty()) add_counters(result, narrowing_strategy(), s.narrow_counters);
   }
   // What ran: the first sub-problem's strategy ("auto" resolved).
   for (auto& s : result.subproblems)
