@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -111,7 +112,7 @@ bool slice_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u,
   slice[p] = Interval(lo, hi);
   for (int step = 0; step < 4; ++step) {
     bool interior = false;
-    const Box image = reduced_image(loop, slice, p, Eigen::MatrixXd(a.preconditioner), interior);
+    const Box image = reduced_image(loop, slice, p, a.preconditioner, interior);
     for (int k = 0; k < 2; ++k) {
       if (!is_finite(image[k])) return false;
       if (!intersect(slice[y[k]], image[k], slice[y[k]])) return true;
@@ -135,8 +136,9 @@ bool arc_misses(const SymmetricLoop& loop, const newton::Arc& a, const Box& u, c
   if (!intersect(u[a.parameter], a.box[a.parameter], range)) return true;
   constexpr int kSlices = 8, kDeeper = 4;
   const double step = width_up(range) / kSlices;
-  // Each slice ends where the next begins (the same double), so together they cover the range.
-  const auto edge = [&](int i) { return i == kSlices ? range.upper() : range.lower() + i * step; };
+  // Each slice ends where the next begins (the same double), so together they cover the range;
+  // on a range a few ulps wide the edges stop at its end.
+  const auto edge = [&](int i) { return i == kSlices ? range.upper() : std::min(range.lower() + i * step, range.upper()); };
   for (int i = 0; i < kSlices; ++i)
     if (!slice_misses(loop, a, u, member, a.box, edge(i), edge(i + 1), kDeeper)) return false;
   return true;
