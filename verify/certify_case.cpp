@@ -229,6 +229,7 @@ ClusterReport verify_cluster(const formulate::Formulation& f, const ClusterTask&
     c.reason = std::string("cluster too wide for a chart: ") + e.what();
   }
   if (!start.empty()) certify_isolated(f, f.natural(c.chart), start, member, periodic, c, options.newton);
+  if (!start.empty()) certify_coupled(f, start, member, periodic, c);
   const bool curve_like = classify_curve(f, member, !start.empty(), c, options.newton);
   if (curve_like) map_curve(f, member, !start.empty(), c, options.newton);
   if (!c.map && c.status != ClusterStatus::certified) map_symmetric_loop(f, member, c);

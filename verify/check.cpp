@@ -4,6 +4,8 @@
 #include "verify/check_claims.hpp"
 #include "verify/check_map.hpp"
 #include "verify/check_proofs.hpp"
+#include "verify/check_json.hpp"
+#include "verify/coupled_loops.hpp"
 #include "verify/cluster.hpp"
 #include "verify/isolated.hpp"
 
@@ -21,32 +23,6 @@ namespace linkbox::verify {
 using nlohmann::json;
 
 namespace {
-
-Box box_from(const json& j) {
-  Box b;
-  for (auto& x : j) b.push_back(Interval(x.at(0).get<double>(), x.at(1).get<double>()));
-  return b;
-}
-
-newton::Certificate certificate_from(const json& j) {
-  newton::Certificate c;
-  const std::string method = j.at("method");
-  if (method != "krawczyk" && method != "hansen-sengupta")
-    throw std::invalid_argument("unknown certificate method '" + method + "'");
-  c.method = method == "krawczyk" ? newton::Method::krawczyk : newton::Method::hansen_sengupta;
-  c.box = box_from(j.at("box"));
-  // Rows of one length, checked before anything is allocated or written.
-  const json& m = j.at("preconditioner");
-  const size_t cols = m.empty() ? 0 : m.at(0).size();
-  for (size_t r = 0; r < m.size(); ++r)
-    if (!m.at(r).is_array() || m[r].size() != cols)
-      throw std::invalid_argument("a preconditioner whose rows differ in length");
-  c.preconditioner.resize(m.size(), cols);
-  for (size_t r = 0; r < m.size(); ++r)
-    for (size_t k = 0; k < cols; ++k) c.preconditioner(r, k) = m[r][k].get<double>();
-  c.fixed_variable = j.value("fixed_variable", -1);
-  return c;
-}
 
 // A box carried between a chart's natural unknowns and the outputs (`map` does it); empty
 // when it cannot be, e.g. an angle box too wide for the chart's half-angle tangents.
@@ -69,23 +45,6 @@ Box unwrapped(const Box& b, const Box& ref, bool angles) {
     if (turns != 0) r[i] += two_pi() * Interval(turns);
   }
   return r;
-}
-
-// The natural equations a certificate speaks of: those listed under `key`, or all of them.
-// Returns false when an index is out of range.
-bool equations_named(const json& c, const char* key, const std::vector<model::Polynomial>& all,
-                     std::vector<model::Polynomial>& out) {
-  if (!c.contains(key)) {
-    out = all;
-    return true;
-  }
-  out.clear();
-  for (auto& r : c.at(key)) {
-    const int i = r.get<int>();
-    if (i < 0 || i >= static_cast<int>(all.size())) return false;
-    out.push_back(all[i]);
-  }
-  return true;
 }
 
 // Whether `hull` covers `b`, angle sides modulo whole turns.
@@ -163,7 +122,9 @@ class Checker {
       return;
     }
     const auto& sys = f_.natural(chart);
-    if (status == "certified") {
+    if (status == "certified" && c.contains("argument")) {
+      check_coupled(k, sys);
+    } else if (status == "certified") {
       check_certified(k, sys);
     } else if (status == "empty") {
       check_empty(k, sys);
@@ -214,7 +175,14 @@ class Checker {
     // image the box and preconditioner give (which holds the root).
     if (!encloses(box_from(cj.at("image")), *image))
       out_.failures.push_back(k.where + ": the stored Newton image does not contain the one its box and preconditioner give");
-    // The reported root must enclose what the certified box maps to.
+    check_root(k, sys, cert, *image);
+  }
+
+  // What a certified cluster claims of its root, on the certified box: the reported root
+  // encloses it, the inequalities hold there, and no other root is in the hull when claimed.
+  void check_root(const Entry& k, const formulate::NaturalSystem& sys, const newton::Certificate& cert,
+                  const Box& image) {
+    const json& cj = k.c.at("certificate");
     const auto root = carried([&] { return f_.natural_to_output(k.chart, cert.box); });
     if (!root || !encloses(box_from(k.c.at("root")), *root))
       out_.failures.push_back(k.where + ": the reported root box does not enclose the certified box");
@@ -222,16 +190,38 @@ class Checker {
     for (auto& q : sys.inequalities)
       if (model::side_of(q, cert.box) != model::Side::inside)
         out_.failures.push_back(k.where + ": the certified root is not proved to satisfy \"" + q.name + "\"");
-    if (!sys.domain.empty() && cj.value("root_in_domain", false) && !encloses(sys.domain, *image))
+    if (!sys.domain.empty() && cj.value("root_in_domain", false) && !encloses(sys.domain, image))
       out_.failures.push_back(k.where + ": root claimed in the domain but its image is not");
     // "No other root in the cluster" is what makes a count exact: re-proved, not read.
-    if (cj.value("unique_in_hull", false)) {
+    if (cj.value("unique_in_hull", false) && !k.c.contains("argument")) {
       const auto start = carried([&] { return f_.output_to_natural(k.chart, k.hull); });
       if (!start || !unique_over(sys, *start, cert))
         out_.failures.push_back(k.where + ": no other root in its hull is claimed but not proved");
     }
     if (!k.c.contains("duplicate_of")) ++certified_;
     else duplicates_.push_back(k.index);
+  }
+
+  // Certified through its loops (verify/coupled_loops.hpp): its square subsystem's root is
+  // unique around the cluster, and the loops' argument, run again, puts a root of every
+  // equation there.
+  void check_coupled(const Entry& k, const formulate::NaturalSystem& sys) {
+    ++out_.checked;
+    std::vector<model::Polynomial> eqs;
+    const newton::Certificate cert = certificate_from(k.c.at("certificate"));
+    const auto start = carried([&] { return f_.output_to_natural(k.chart, k.hull); });
+    std::optional<Box> image;
+    bool holds = k.c.at("argument") == "coupled loops" && start && equations_named(k.c, "subsystem", sys.equations, eqs) &&
+                 (image = proved_image(eqs, cert)) && encloses(box_from(k.c.at("certificate").at("image")), *image);
+    if (holds) {
+      const Box within = coupled_room(*start, cert.box);
+      holds = unique_over(eqs, within, cert) && coupled_loops_root(f_, k.chart, cert.box, within).proved;
+    }
+    if (!holds) {
+      out_.failures.push_back(k.where + ": the proof of its root through its loops does not hold");
+      return;
+    }
+    check_root(k, sys, cert, *image);
   }
 
   void check_empty(const Entry& k, const formulate::NaturalSystem& sys) {

@@ -53,21 +53,39 @@ newton::Certificate certify_natural(const formulate::NaturalSystem& sys, const B
   return c;
 }
 
+namespace {
+
+bool unique_over(const newton::SquareSystem& s, const Box& start, const newton::Certificate& c) {
+  const Box y = hull(start, c.box);
+  if (newton::newton_step(c.method, s, y, c.preconditioner).interior) return true;
+  if (newton::at_most_one_root(s, y, c.preconditioner)) return true;
+  const Eigen::MatrixXd jm = newton::midpoint(s.jacobian(y));
+  if (jm.size() == 0 || !jm.allFinite()) return false;
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm);
+  if (!(lu.rcond() >= newton::NewtonOptions{}.singular_rcond)) return false;
+  const Eigen::MatrixXd cy = lu.inverse();
+  return cy.allFinite() && newton::at_most_one_root(s, y, cy);
+}
+
+}  // namespace
+
 bool unique_over(const formulate::NaturalSystem& sys, const Box& start, const newton::Certificate& c) {
   if (encloses(c.box, start)) return true;
   if (c.box.size() != start.size() || start.size() != sys.unknowns.size()) return false;
   try {
-    const newton::SquareSystem s = sys.compiled ? newton::SquareSystem::all_unknown(sys.compiled)
-                                                : newton::SquareSystem::all_unknown(sys.equations, start.size());
-    const Box y = hull(start, c.box);
-    if (newton::newton_step(c.method, s, y, c.preconditioner).interior) return true;
-    if (newton::at_most_one_root(s, y, c.preconditioner)) return true;
-    const Eigen::MatrixXd jm = newton::midpoint(s.jacobian(y));
-    if (jm.size() == 0 || !jm.allFinite()) return false;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm);
-    if (!(lu.rcond() >= newton::NewtonOptions{}.singular_rcond)) return false;
-    const Eigen::MatrixXd cy = lu.inverse();
-    return cy.allFinite() && newton::at_most_one_root(s, y, cy);
+    return unique_over(sys.compiled ? newton::SquareSystem::all_unknown(sys.compiled)
+                                    : newton::SquareSystem::all_unknown(sys.equations, start.size()),
+                       start, c);
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
+
+bool unique_over(const std::vector<model::Polynomial>& f, const Box& start, const newton::Certificate& c) {
+  if (encloses(c.box, start)) return true;
+  if (c.box.size() != start.size() || start.size() != f.size()) return false;
+  try {
+    return unique_over(newton::SquareSystem::all_unknown(f, start.size()), start, c);
   } catch (const std::invalid_argument&) {
     return false;
   }

@@ -32,5 +32,7 @@ newton::Certificate certify_natural(const formulate::NaturalSystem& sys, const B
 // certify_root tries next, the inverse of the union's midpoint Jacobian (float, only chosen:
 // any C makes either test a proof).
 bool unique_over(const formulate::NaturalSystem& sys, const Box& start, const newton::Certificate& c);
+// The same for a square subsystem `f` of the natural equations.
+bool unique_over(const std::vector<model::Polynomial>& f, const Box& start, const newton::Certificate& c);
 
 }  // namespace linkbox::verify

@@ -100,6 +100,7 @@ json report_json(const ClusterReport& c) {
           {"chart", c.chart},
           {"certificate", certificate_json(c.certificate)},
           {"subsystem", c.subsystem},
+          {"argument", c.argument},
           {"excluding_equation", c.excluding_equation},
           {"root", exact_json(c.root)},
           {"outputs", outputs},
@@ -123,6 +124,7 @@ ClusterReport report_from(const json& j) {
   c.chart = j.at("chart");
   c.certificate = certificate_from(j.at("certificate"));
   c.subsystem = j.at("subsystem").get<std::vector<int>>();
+  c.argument = j.value("argument", "");
   c.excluding_equation = j.at("excluding_equation");
   c.root = exact_box(j.at("root"));
   for (auto& m : j.at("outputs")) {

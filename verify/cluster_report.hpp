@@ -38,6 +38,9 @@ struct ClusterReport {
   // subsystem; empty = all), or the one whose range over certificate.box misses 0.
   std::vector<int> subsystem;
   int excluding_equation = -1;
+  // Certified with a square subsystem: what proves the other equations vanish at its root
+  // ("coupled loops": verify/coupled_loops.hpp); empty otherwise.
+  std::string argument;
   Box root;                                     // certified box in the output variables
   std::vector<formulate::MatrixOutput> outputs;  // declared outputs over the certified box
   std::vector<CurveCrossing> crossings;         // curve clusters

@@ -1,7 +1,9 @@
 #include "verify/isolated.hpp"
 
 #include "newton/float_system.hpp"
+#include "verify/check_proofs.hpp"
 #include "verify/cluster.hpp"
+#include "verify/coupled_loops.hpp"
 #include "verify/subsystem.hpp"
 
 #include <algorithm>
@@ -110,6 +112,35 @@ void examine_not_square(const formulate::NaturalSystem& sys, const Box& start, C
 
 }  // namespace
 
+void accept_root(const formulate::Formulation& f, const std::vector<Box>& members, const std::vector<bool>& periodic,
+                 ClusterReport& c) {
+  c.status = ClusterStatus::certified;
+  c.root = f.natural_to_output(c.chart, c.certificate.box);
+  c.outputs = f.natural_outputs(c.chart, c.certificate.box);
+  for (auto& b : members) c.distances.push_back(farthest_distance(b, c.root, periodic));
+  c.max_distance = *std::max_element(c.distances.begin(), c.distances.end());
+}
+
+void certify_coupled(const formulate::Formulation& f, const Box& start, const std::vector<Box>& members,
+                     const std::vector<bool>& periodic, ClusterReport& c) {
+  const auto& sys = f.natural(c.chart);
+  if (c.status != ClusterStatus::unverified || c.subsystem.empty() || c.certificate.status != newton::Status::certified ||
+      (!sys.domain.empty() && !c.certificate.root_in_domain))
+    return;
+  const Box within = coupled_room(start, c.certificate.box);
+  if (!unique_over(pick(sys.equations, c.subsystem), within, c.certificate)) return;
+  const CoupledLoops r = coupled_loops_root(f, c.chart, c.certificate.box, within);
+  if (!r.proved) {
+    if (!r.how.empty()) c.reason += "; not proved through its loops: " + r.how;
+    return;
+  }
+  accept_root(f, members, periodic, c);
+  c.certificate.unique_in_hull = true;
+  c.argument = "coupled loops";
+  c.reason = "certified through its loops: " + r.how + "; no other root in the cluster: the " +
+             std::to_string(c.subsystem.size()) + " equations of its square subsystem have only this one";
+}
+
 void certify_isolated(const formulate::Formulation& f, const formulate::NaturalSystem& sys, const Box& start,
                       const std::vector<Box>& members, const std::vector<bool>& periodic, ClusterReport& c,
                       const newton::NewtonOptions& options) {
@@ -126,11 +157,7 @@ void certify_isolated(const formulate::Formulation& f, const formulate::NaturalS
   if (c.certificate.status == newton::Status::certified && !c.certificate.root_in_domain && !sys.domain.empty()) {
     c.reason = "root on the domain boundary: certified in a slightly enlarged domain only";
   } else if (c.certificate.status == newton::Status::certified) {
-    c.status = ClusterStatus::certified;
-    c.root = f.natural_to_output(c.chart, c.certificate.box);
-    c.outputs = f.natural_outputs(c.chart, c.certificate.box);
-    for (auto& b : members) c.distances.push_back(farthest_distance(b, c.root, periodic));
-    c.max_distance = *std::max_element(c.distances.begin(), c.distances.end());
+    accept_root(f, members, periodic, c);
     if (!c.certificate.unique_in_hull) c.reason = "root certified; its cluster hull not proved free of other roots";
   } else if (c.certificate.reason == newton::Reason::no_root) {
     c.status = ClusterStatus::empty;

@@ -9,6 +9,14 @@ namespace linkbox::verify {
 
 // `members` are the cluster's boxes in the output variables (for the distances to a
 // certified root); `periodic` flags the angle dimensions.
+// Marks the cluster certified at its certificate's box (root, outputs, distances).
+void accept_root(const formulate::Formulation& f, const std::vector<Box>& members, const std::vector<bool>& periodic,
+                 ClusterReport& c);
+// An overdetermined cluster whose square subsystem's root is unique in `start`: certified
+// when its loops prove a root of every equation in `start` (verify/coupled_loops.hpp), which
+// can then only be that root.
+void certify_coupled(const formulate::Formulation& f, const Box& start, const std::vector<Box>& members,
+                     const std::vector<bool>& periodic, ClusterReport& c);
 void certify_isolated(const formulate::Formulation& f, const formulate::NaturalSystem& sys, const Box& start,
                       const std::vector<Box>& members, const std::vector<bool>& periodic, ClusterReport& c,
                       const newton::NewtonOptions& options);

@@ -50,13 +50,23 @@ std::optional<SymmetricLoop> SymmetricLoop::of(const formulate::Formulation& f) 
   const auto& links = c.loops[0].links;
   const std::vector<std::string> names = f.output_names();
   if (links.size() != 6 || names.size() != 6) return std::nullopt;
-  SymmetricLoop s;
-  for (int i = 0; i < 6; ++i) {
-    if (links[i].prismatic) return std::nullopt;
-    s.output_of_[i] = -1;
+  std::vector<int> output_of(6, -1);
+  for (int i = 0; i < 6; ++i)
     for (int k = 0; k < 6; ++k)
-      if (names[k] == links[i].joint) s.output_of_[i] = k;
-    if (s.output_of_[i] < 0) return std::nullopt;
+      if (names[k] == links[i].joint) output_of[i] = k;
+  return of_loop(*linkage, 0, output_of);
+}
+
+std::optional<SymmetricLoop> SymmetricLoop::of_loop(const formulate::LinkageFormulation& f, size_t loop,
+                                                    const std::vector<int>& output_of) {
+  const auto& links = f.linkage_case().loops.at(loop).links;
+  const size_t outputs = f.output_names().size();
+  if (links.size() != 6 || output_of.size() != 6) return std::nullopt;
+  SymmetricLoop s;
+  s.outputs_ = outputs;
+  for (int i = 0; i < 6; ++i) {
+    if (links[i].prismatic || output_of[i] < 0 || output_of[i] >= static_cast<int>(outputs)) return std::nullopt;
+    s.output_of_[i] = output_of[i];
   }
   for (int i = 0; i < 3; ++i) {
     const auto &x = links[i], &y = links[i + 3];
@@ -83,7 +93,7 @@ Box SymmetricLoop::to_uv(const Box& output) const {
 }
 
 Box SymmetricLoop::to_output(const Box& uv) const {
-  Box out(6);
+  Box out(outputs_);
   for (int i = 0; i < 3; ++i) {
     out[output_of_[i]] = uv.at(i) + uv.at(i + 3);
     out[output_of_[i + 3]] = uv.at(i) - uv.at(i + 3);

@@ -26,6 +26,10 @@
 #include <array>
 #include <optional>
 
+namespace linkbox::formulate {
+class LinkageFormulation;
+}
+
 namespace linkbox::verify {
 
 class SymmetricLoop {
@@ -33,6 +37,11 @@ class SymmetricLoop {
   // The loop of `f` when the case is one such loop (revolute joints, no limits, no angle
   // constraints) and its outputs are its six angles; `output_of[i]` is entry i's output.
   static std::optional<SymmetricLoop> of(const formulate::Formulation& f);
+  // Loop `loop` of a linkage of several, entry i's angle being output output_of[i] (its
+  // natural unknown, formulate::LinkageFormulation::loop_unknowns); to_output then fills
+  // only the loop's six outputs.
+  static std::optional<SymmetricLoop> of_loop(const formulate::LinkageFormulation& f, size_t loop,
+                                              const std::vector<int>& output_of);
 
   // (u, v) of a box of output variables (angles), and back: rigorous hulls.
   Box to_uv(const Box& output) const;
@@ -64,6 +73,7 @@ class SymmetricLoop {
 
  private:
   std::array<int, 6> output_of_{};
+  size_t outputs_ = 6;
   // Products run in FastInterval inside a RoundingGuard held by each public evaluation.
   using F = FastInterval;
   std::array<F, 3> a_, d_, cos_alpha_, sin_alpha_, cos_half_alpha_, sin_half_alpha_;

@@ -33,7 +33,7 @@ const NaturalSystem& Formulation::natural(std::uint64_t chart) const {
 
 NaturalSystem PolynomialFormulation::natural_system(std::uint64_t) const {
   return {system_.equations, system_.names(), system_.domain(), system_.inequalities, {}, nullptr,
-          system_.interval_constants, system_.links, system_.assumed_bounds};
+          system_.interval_constants, system_.links, system_.assumed_bounds, {}};
 }
 
 std::vector<std::string> PolynomialFormulation::output_names() const {

@@ -11,6 +11,7 @@
 #include <mutex>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace linkbox::formulate {
@@ -63,6 +64,8 @@ struct NaturalSystem {
   std::vector<model::Link> links;
   // Domains the case left unbounded, bounded by default (model::System::assumed_bounds).
   std::vector<std::string> assumed_bounds;
+  // Linkages: the rows [first, second) of `equations` that close each loop, in case order.
+  std::vector<std::pair<int, int>> loop_rows;
 };
 
 class Formulation {

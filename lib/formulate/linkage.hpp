@@ -72,6 +72,8 @@ class LinkageFormulation final : public Formulation {
   Box natural_to_output(std::uint64_t chart, const Box& natural) const override;
 
   const input::LinkageCase& linkage_case() const { return case_; }
+  // The natural unknown of each entry of loop `l` (an output index), in the loop's order.
+  const std::vector<int>& loop_unknowns(size_t l) const { return unknown_of_entry_.at(l); }
   ModelSize model_size() const;
 
   // Where the model keeps each coordinate of a vector: value + scale * v[variable], v being

@@ -233,8 +233,11 @@ NaturalSystem LinkageFormulation::natural_system(std::uint64_t chart) const {
     return s;
   }
   for (auto& o : outputs_) s.unknowns.push_back(o.is_offset(prismatic_) ? o.name : "t_" + o.name);
-  for (size_t l = 0; l < case_.loops.size(); ++l)
+  for (size_t l = 0; l < case_.loops.size(); ++l) {
+    const int first = static_cast<int>(s.equations.size());
     for (auto& p : dh_loop_closure(case_.loops[l], unknown_of_entry_[l], chart)) s.equations.push_back(std::move(p));
+    s.loop_rows.emplace_back(first, static_cast<int>(s.equations.size()));
+  }
   for (auto& ac : case_.angle_constraints) s.equations.push_back(angle_equation(ac, chart));
   for (auto& l : limits_) s.inequalities.push_back(limit_inequality(l, chart));
   if (has_prismatic_) {

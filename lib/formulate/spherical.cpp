@@ -180,7 +180,7 @@ std::uint64_t SphericalFormulation::chart_for(const Box& output_hull) const { re
 
 NaturalSystem SphericalFormulation::natural_system(std::uint64_t chart) const {
   SubProblem s = subproblem(chart);
-  return {std::move(s.system.equations), s.system.names(), {}, {}, {}, nullptr, {}, {}, {}};
+  return {std::move(s.system.equations), s.system.names(), {}, {}, {}, nullptr, {}, {}, {}, {}};
 }
 
 Box SphericalFormulation::output_to_natural(std::uint64_t chart, const Box& output) const {

@@ -212,6 +212,7 @@ json cluster_json(const formulate::Formulation& f, const verify::ClusterReport& 
   if (c.status != verify::ClusterStatus::curve) {
     cj["certificate"] = certificate_json(c.certificate);
     if (!c.subsystem.empty()) cj["subsystem"] = c.subsystem;
+    if (!c.argument.empty()) cj["argument"] = c.argument;
     if (c.excluding_equation >= 0) cj["excluding_equation"] = c.excluding_equation;
   }
   if (c.status == verify::ClusterStatus::curve) {

@@ -25,6 +25,7 @@
 #include "input/case_hash.hpp"
 #include "verify/check.hpp"
 #include "verify/check_claims.hpp"
+#include "tests/bicyclohexane_window.hpp"
 #include "tests/cli_run.hpp"
 
 #include <catch2/catch.hpp>
@@ -325,7 +326,7 @@ TEST_CASE("check rejects every mutation of a valid result", "[check][mutation]")
       {"member dropped", drop_member},          {"false duplicate", false_duplicate},
   };
   struct Case {
-    const char* file;
+    std::string file;
     const char* options;
     std::vector<std::string> kinds;  // all of them apply to the case's result
     int variants;
@@ -335,10 +336,14 @@ TEST_CASE("check rejects every mutation of a valid result", "[check][mutation]")
   // The gimbal lock is a curve: certified crossings, no isolated root.
   const std::vector<std::string> crossings = {"certificate box moved", "preconditioner row changed", "image changed",
                                               "member dropped"};
-  for (const Case& c : {Case{"cases/spherical/wrist.toml", "", all, kVariants},
-                        Case{"cases/polynomial/planted-cubic.toml", "", all, kVariants},
-                        Case{"cases/hard/gimbal-lock.toml", "--sigma 1e-2", crossings, kCurveVariants}}) {
-    const Solved& s = solved(src(c.file), c.options);
+  // Bicyclohexane's poses beside a chair: certified through the loops (verify/coupled_loops.hpp).
+  const std::string window = tmp("bicyclohexane-window.toml");
+  write_text(window, test::bicyclohexane_window(test::bicyclohexane_text(), test::bicyclohexane_pose('b')));
+  for (const Case& c : {Case{src("cases/spherical/wrist.toml"), "", all, kVariants},
+                        Case{src("cases/polynomial/planted-cubic.toml"), "", all, kVariants},
+                        Case{window, "", all, kVariants},
+                        Case{src("cases/hard/gimbal-lock.toml"), "--sigma 1e-2", crossings, kCurveVariants}}) {
+    const Solved& s = solved(c.file, c.options);
     std::uint64_t seed = 12;
     for (auto& name : c.kinds) {
       DYNAMIC_SECTION(c.file << ": " << name) {

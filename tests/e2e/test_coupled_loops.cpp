@@ -1,0 +1,95 @@
+// Bicyclohexane's isolated poses are roots of 14 equations in 13 unknowns: a ring in a chair
+// (rigid) beside a ring on its boat curve, tied by the bridgehead angles. They are certified
+// through the loops (verify/coupled_loops.hpp), here in windows of joint limits around them.
+#include "formulate/load.hpp"
+#include "tests/bicyclohexane_window.hpp"
+#include "tests/solved_case.hpp"
+#include "verify/check.hpp"
+#include "verify/coupled_loops.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace linkbox;
+
+namespace {
+
+test::SolvedCase solve_window(const std::string& text) { return test::solve_text(text, "auto", 0.1); }
+
+}  // namespace
+
+TEST_CASE("bicyclohexane: a chair beside a boat is certified through its loops", "[linkage][coupled]") {
+  const auto run = solve_window(test::bicyclohexane_window(test::bicyclohexane_text(), test::bicyclohexane_pose('b')));
+  // The window holds the pose and its mirror in ring 2's turn about c1-c2.
+  REQUIRE(run.roots.size() == 2);
+  CHECK(run.j["certified_roots"] == 2);
+  CHECK(run.j["headline"].get<std::string>().find("exactly 2 roots") != std::string::npos);
+  std::vector<double> turns;
+  for (auto& c : run.j["clusters"]) {
+    if (c["status"] != "certified") continue;
+    CHECK(c["argument"] == "coupled loops");
+    CHECK(c["certificate"]["unique_in_hull"] == true);
+    CHECK(c["reason"].get<std::string>().find("'ring1' rigid") != std::string::npos);
+    const auto& root = c["root"];
+    const auto mid = [&](int i) { return (root[i][0].get<double>() + root[i][1].get<double>()) / 2; };
+    // Ring 1 is the chair of the closed form, ring 2 a boat: torsions i and i + 3 alike.
+    for (int i = 0; i < 6; ++i) CHECK(std::fabs(std::fabs(mid(i)) - test::chair_torsion()) < 1e-9);
+    CHECK(std::fabs(mid(11) - mid(8)) < 1e-9);  // c1-c2@ring2 and c8-c9
+    CHECK(std::fabs(mid(6) - mid(9)) < 1e-9);   // c2-c7 and c9-c10
+    CHECK(std::fabs(mid(7) - mid(10)) < 1e-9);  // c7-c8 and c10-c1
+    turns.push_back(mid(12));
+  }
+  REQUIRE(turns.size() == 2);
+  CHECK(std::fabs(turns[0] + turns[1]) < 1e-9);
+  CHECK(verify::check_certificates(run.j, *run.c.formulation).failures.empty());
+}
+
+TEST_CASE("bicyclohexane: two chairs leave the bridgeheads overdetermined, and say so", "[linkage][coupled]") {
+  const auto run = solve_window(test::bicyclohexane_window(test::bicyclohexane_text(), test::bicyclohexane_pose('c')));
+  CHECK(run.roots.empty());
+  bool said = false;
+  for (auto& c : run.v.clusters) said = said || c.reason.find("every loop is rigid ('ring1', 'ring2')") != std::string::npos;
+  CHECK(said);
+  // Claimed anyway, the argument does not re-prove: check rejects it.
+  auto forged = run.j;
+  bool claimed = false;
+  for (auto& c : forged["clusters"])
+    if (!claimed && c.contains("subsystem") && c["certificate"]["status"] == "certified") {
+      c["status"] = "certified";
+      c["argument"] = "coupled loops";
+      c["root"] = c["hull"];
+      forged["certified_roots"] = 1;
+      claimed = true;
+    }
+  REQUIRE(claimed);
+  bool rejected = false;
+  for (auto& f : verify::check_certificates(forged, *run.c.formulation).failures)
+    rejected = rejected || f.find("the proof of its root through its loops does not hold") != std::string::npos;
+  CHECK(rejected);
+}
+
+TEST_CASE("bicyclohexane: a ring one bond length off its symmetry is not argued mobile", "[linkage][coupled]") {
+  const std::string window = test::bicyclohexane_window(test::bicyclohexane_text(), test::bicyclohexane_pose('b'));
+  const auto run = solve_window(window);
+  REQUIRE(run.roots.size() == 2);
+  const auto& c = run.v.clusters.at(run.v.clusters[0].status == verify::ClusterStatus::certified ? 0 : 1);
+  REQUIRE(c.status == verify::ClusterStatus::certified);
+  // Ring 2 with one bond 1e-9 longer is no longer mobile: at the same box the argument must
+  // not take it for a loop on its curve (its pose may be gone; the search proves the window empty).
+  std::string text = window;
+  const std::string bond = "link = \"c7\",  a = 0, d = 1.526,";
+  const size_t at = text.find(bond);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, bond.size(), "link = \"c7\",  a = 0, d = 1.526000001,");
+  const auto perturbed = formulate::load_case_text(text, "perturbed.toml");
+  const Box start = perturbed.formulation->output_to_natural(c.chart, c.hull);
+  const auto r = verify::coupled_loops_root(*perturbed.formulation, c.chart, c.certificate.box,
+                                            verify::coupled_room(start, c.certificate.box));
+  CHECK_FALSE(r.proved);
+  CHECK(r.how.find("'ring2' is neither rigid in the box nor a symmetric six-joint loop") != std::string::npos);
+  // The same call on the case as it is proves the root.
+  CHECK(verify::coupled_loops_root(*run.c.formulation, c.chart, c.certificate.box,
+                                   verify::coupled_room(start, c.certificate.box)).proved);
+  CHECK(solve_window(text).roots.empty());
+}
