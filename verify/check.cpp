@@ -214,8 +214,9 @@ class Checker {
     bool holds = k.c.at("argument") == "coupled loops" && start && equations_named(k.c, "subsystem", sys.equations, eqs) &&
                  (image = proved_image(eqs, cert)) && encloses(box_from(k.c.at("certificate").at("image")), *image);
     if (holds) {
-      const Box within = coupled_room(*start, cert.box);
-      holds = unique_over(eqs, within, cert) && coupled_loops_root(f_, k.chart, cert.box, within).proved;
+      const CoupledRoom room = coupled_room(eqs, *start, cert);
+      holds = room.unique && (room.cluster || !k.c.at("certificate").value("unique_in_hull", false)) &&
+              coupled_loops_root(f_, k.chart, cert.box, room.box).proved;
     }
     if (!holds) {
       out_.failures.push_back(k.where + ": the proof of its root through its loops does not hold");

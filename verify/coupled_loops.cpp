@@ -4,6 +4,7 @@
 #include "newton/certify.hpp"
 #include "newton/interval_eigen.hpp"
 #include "newton/square_system.hpp"
+#include "verify/check_proofs.hpp"
 #include "verify/symmetric_loop.hpp"
 
 #include <Eigen/LU>
@@ -129,10 +130,16 @@ std::string names(const std::vector<std::string>& list) {
 
 }  // namespace
 
-Box coupled_room(const Box& start, const Box& certified) {
-  Box within = hull(start, certified);
-  for (auto& w : within) w += Interval(-1.0, 1.0) * (1e3 * width_up(w) + 1e-12 * (1 + std::fabs(median(w))));
-  return within;
+CoupledRoom coupled_room(const std::vector<model::Polynomial>& f, const Box& start, const newton::Certificate& c) {
+  Box grown = c.box;
+  for (auto& w : grown) w += Interval(-1.0, 1.0) * (1e3 * width_up(w) + 1e-12 * (1 + std::fabs(median(w))));
+  CoupledRoom room{hull(start, grown), false, true};
+  room.unique = unique_over(f, room.box, c);
+  if (!room.unique) {
+    room = {grown, false, false};
+    room.unique = unique_over(f, room.box, c);
+  }
+  return room;
 }
 
 CoupledLoops coupled_loops_root(const formulate::Formulation& f, std::uint64_t chart, const Box& x,

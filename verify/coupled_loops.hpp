@@ -17,6 +17,7 @@
 // root in the box they span. Uniqueness is the caller's: a square subsystem whose root is
 // unique in the cluster bounds the whole system's roots there to that one.
 #include "formulate/formulation.hpp"
+#include "newton/certify.hpp"
 
 #include <cstdint>
 #include <string>
@@ -35,8 +36,15 @@ CoupledLoops coupled_loops_root(const formulate::Formulation& f, std::uint64_t c
                                 const Box& within);
 
 // Where the argument may place its parts for a cluster of natural box `start` whose square
-// subsystem was certified on `certified`: both, grown by a thousand times their width (each
-// part's Newton test needs some room). The subsystem's root must be unique in all of it.
-Box coupled_room(const Box& start, const Box& certified);
+// subsystem `f` was certified by `c`: the cluster and the certified box grown by a thousand
+// times its width (each part's Newton test needs some room around the root, which a cluster
+// of one tiny box does not give), when the subsystem's root is proved unique there; else the
+// grown certified box alone, when it is there.
+struct CoupledRoom {
+  Box box;
+  bool unique = false;   // the subsystem's root is proved unique in `box`
+  bool cluster = false;  // `box` holds the cluster
+};
+CoupledRoom coupled_room(const std::vector<model::Polynomial>& f, const Box& start, const newton::Certificate& c);
 
 }  // namespace linkbox::verify

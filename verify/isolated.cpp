@@ -127,18 +127,20 @@ void certify_coupled(const formulate::Formulation& f, const Box& start, const st
   if (c.status != ClusterStatus::unverified || c.subsystem.empty() || c.certificate.status != newton::Status::certified ||
       (!sys.domain.empty() && !c.certificate.root_in_domain))
     return;
-  const Box within = coupled_room(start, c.certificate.box);
-  if (!unique_over(pick(sys.equations, c.subsystem), within, c.certificate)) return;
-  const CoupledLoops r = coupled_loops_root(f, c.chart, c.certificate.box, within);
+  const CoupledRoom room = coupled_room(pick(sys.equations, c.subsystem), start, c.certificate);
+  if (!room.unique) return;
+  const CoupledLoops r = coupled_loops_root(f, c.chart, c.certificate.box, room.box);
   if (!r.proved) {
     if (!r.how.empty()) c.reason += "; not proved through its loops: " + r.how;
     return;
   }
   accept_root(f, members, periodic, c);
-  c.certificate.unique_in_hull = true;
+  c.certificate.unique_in_hull = room.cluster;
   c.argument = "coupled loops";
-  c.reason = "certified through its loops: " + r.how + "; no other root in the cluster: the " +
-             std::to_string(c.subsystem.size()) + " equations of its square subsystem have only this one";
+  c.reason = "certified through its loops: " + r.how + "; " +
+             (room.cluster ? "no other root in the cluster: the " + std::to_string(c.subsystem.size()) +
+                                 " equations of its square subsystem have only this one"
+                           : "its cluster hull not proved free of other roots");
 }
 
 void certify_isolated(const formulate::Formulation& f, const formulate::NaturalSystem& sys, const Box& start,
