@@ -177,6 +177,8 @@ CoupledLoops coupled_loops_root(const formulate::Formulation& f, std::uint64_t c
     if (!in_loop[k]) r.free.push_back(static_cast<int>(k));
   for (size_t e = 0; e < sys.equations.size(); ++e)
     if (!row_in_loop[e]) r.rows.push_back(static_cast<int>(e));
+  out.equations = r.equations();
+  out.unknowns = r.unknowns();
   if (r.unknowns() != r.equations() || r.unknowns() == 0) {
     out.how = (curve.empty() ? "every loop is rigid (" + names(rigid) + ")"
                              : "loops " + names(curve) + " on their symmetric curves") +

@@ -28,6 +28,9 @@ struct CoupledLoops {
   bool proved = false;
   Box box;          // natural unknowns: holds a root of every natural equation, inside `within`
   std::string how;  // what each loop contributed, or why no root was proved
+  // The system left once rigid loops are fixed and the others are on their curves (0 when
+  // the argument stopped before it): a curve of the coupled loops when one more unknown.
+  int equations = 0, unknowns = 0;
 };
 
 // The argument above from the box `x` (natural unknowns of chart `chart`), each part's box

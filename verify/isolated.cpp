@@ -124,6 +124,13 @@ void accept_root(const formulate::Formulation& f, const std::vector<Box>& member
 void certify_coupled(const formulate::Formulation& f, const Box& start, const std::vector<Box>& members,
                      const std::vector<bool>& periodic, ClusterReport& c) {
   const auto& sys = f.natural(c.chart);
+  if (c.status == ClusterStatus::unverified && c.subsystem.empty() && sys.equations.size() > sys.unknowns.size()) {
+    // No isolated root here: say what the loops leave when it is a curve.
+    const CoupledLoops r = coupled_loops_root(f, c.chart, start, start);
+    if (r.unknowns == r.equations + 1)
+      c.reason += "; through its loops: " + r.how + ", a curve of the coupled loops, which no map follows yet";
+    return;
+  }
   if (c.status != ClusterStatus::unverified || c.subsystem.empty() || c.certificate.status != newton::Status::certified ||
       (!sys.domain.empty() && !c.certificate.root_in_domain))
     return;

@@ -107,3 +107,27 @@ TEST_CASE("bicyclohexane: a ring one bond length off its symmetry is not argued 
   CHECK(verify::coupled_loops_root(*run.c.formulation, c.chart, c.certificate.box, room.box).proved);
   CHECK(solve_window(text).roots.empty());
 }
+
+TEST_CASE("bicyclohexane: where no ring is rigid, the loops leave a curve, and say so", "[linkage][coupled]") {
+  const auto loaded = formulate::load_case(test::src("cases/linkages/bicyclohexane.toml"));
+  const auto& f = *loaded.formulation;
+  // Both rings near boats (torsions i and i + 3 alike), 0.3 wide: neither ring's closure has
+  // a unique root there, both rings being mobile.
+  Box around;
+  const auto names = f.output_names();
+  auto pose = test::bicyclohexane_pose('b');
+  const double w = test::chair_torsion();
+  for (auto& [joint, at] : std::map<std::string, double>{{"c3-c4", 0}, {"c4-c5", -w}, {"c5-c6", w}, {"c6-c1", 0}})
+    pose[joint] = at;
+  for (auto& name : names) {
+    const double at = pose.count(name) ? pose.at(name) : name == "c1-c2@ring2" ? -test::chair_torsion() : 2.0948;
+    around.push_back(Interval(at - 0.3, at + 0.3));
+  }
+  const std::uint64_t chart = f.chart_for(around);
+  const Box x = f.output_to_natural(chart, around);
+  const auto r = verify::coupled_loops_root(f, chart, x, x);
+  CHECK_FALSE(r.proved);
+  CHECK(r.equations == 6);
+  CHECK(r.unknowns == 7);
+  CHECK(r.how.find("loops 'ring1', 'ring2' on their symmetric curves") != std::string::npos);
+}
