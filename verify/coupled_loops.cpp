@@ -32,6 +32,7 @@ std::optional<Box> rigid_root(const formulate::NaturalSystem& sys, std::pair<int
   for (const Box* hull : {&x, &within}) {
     const newton::Certificate c = newton::certify_root(s, s.restrict(*hull));
     if (c.status == newton::Status::certified && contains(s.restrict(within), c.image)) return c.image;
+    if (&x == &within) break;
   }
   return std::nullopt;
 }
@@ -43,6 +44,7 @@ struct Reduced {
   std::uint64_t chart;
   const formulate::NaturalSystem& sys;
   Box params;                           // natural unknowns; rigid loops' parts are their roots
+  Box param_angles;                     // params in the output variables
   std::vector<SymmetricLoop> loops;     // curve loops
   std::vector<std::vector<int>> outs;   // their six unknowns, in loop order
   std::vector<int> free;                // natural unknowns of no loop
@@ -55,7 +57,7 @@ struct Reduced {
 
   // The natural box at y: a curve loop's entries i and i + 3 both at angle u_i (v = 0).
   Box natural(const Box& y) const {
-    Box angles = f.natural_to_output(chart, params);
+    Box angles = param_angles;
     for (size_t c = 0; c < loops.size(); ++c)
       for (int i = 0; i < 3; ++i) angles[outs[c][i]] = angles[outs[c][i + 3]] = y[3 * c + i];
     const Box t = f.output_to_natural(chart, angles);
@@ -151,7 +153,7 @@ CoupledLoops coupled_loops_root(const formulate::Formulation& f, std::uint64_t c
   const auto& loops = linkage->linkage_case().loops;
   const size_t n = sys.unknowns.size();
   if (sys.loop_rows.size() != loops.size() || !sys.links.empty() || x.size() != n || within.size() != n) return out;
-  Reduced r{f, chart, sys, x, {}, {}, {}, {}, {}};
+  Reduced r{f, chart, sys, x, {}, {}, {}, {}, {}, {}};
   std::vector<bool> in_loop(n, false), row_in_loop(sys.equations.size(), false);
   std::vector<std::string> rigid, curve;
   for (size_t l = 0; l < loops.size(); ++l) {
@@ -191,6 +193,7 @@ CoupledLoops coupled_loops_root(const formulate::Formulation& f, std::uint64_t c
     for (size_t k = 0; k < n; ++k) r.d.back().push_back(sys.equations[e].derivative(static_cast<int>(k)));
   }
   try {
+    r.param_angles = f.natural_to_output(chart, r.params);
     const Box angles = f.natural_to_output(chart, x);
     Box y;
     for (auto& o : r.outs)
