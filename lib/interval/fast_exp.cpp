@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace linkbox::fast_exp {
 
@@ -18,6 +19,7 @@ constexpr int kExpTerms = 18;
 // 2 |s|^(2n+1) / ((2n+1)(1 - s^2)) < 1e-24 |s| after kLogTerms terms.
 constexpr int kLogTerms = 14;
 constexpr double kLargest = 700;  // exp's ends beyond: MPFI (overflow and subnormal results)
+constexpr double kUnderflow = -746;  // exp below: under half the least subnormal
 
 struct Constants {
   std::array<F, kExpTerms + 1> inverse_factorial;  // 1/k!
@@ -93,8 +95,12 @@ bool finite(const FastInterval& x) { return std::isfinite(x.lower()) && std::isf
 }  // namespace
 
 bool exp(const FastInterval& x, FastInterval& out) {
-  if (!finite(x) || x.lower() < -kLargest || x.upper() > kLargest) return false;
-  out = F(exp_at(x.lower()).lower(), exp_at(x.upper()).upper());
+  const double lo = x.lower(), hi = x.upper();
+  if (!std::isfinite(hi) || hi > kLargest || (hi < -kLargest && hi >= kUnderflow) || std::isnan(lo)) return false;
+  // exp > 0 bounds an end far below from under; exp(kUnderflow) < 2^-1076 from over.
+  const double low = lo < -kLargest ? 0.0 : exp_at(lo).lower();
+  const double high = hi < kUnderflow ? std::numeric_limits<double>::denorm_min() : exp_at(hi).upper();
+  out = F(low, high);
   return true;
 }
 

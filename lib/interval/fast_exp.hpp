@@ -8,8 +8,9 @@
 namespace linkbox::fast_exp {
 
 // Each requires a live RoundingGuard (FastInterval arithmetic) and returns false, leaving
-// `out` untouched, where it does not answer (an end beyond +-700 or not finite for exp; an end
-// not positive or not finite for log): the caller goes to rigorous:: then.
+// `out` untouched, where it does not answer (for exp: an upper end above 700, in [-746, -700)
+// or not finite; for log: an end not positive or not finite): the caller goes to rigorous::
+// then. exp's lower end below -700 (-inf too) gives the lower bound 0.
 bool exp(const FastInterval& x, FastInterval& out);
 bool log(const FastInterval& x, FastInterval& out);
 

@@ -8,6 +8,7 @@
 #include <mpfr.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 using namespace linkbox;
@@ -87,9 +88,38 @@ TEST_CASE("fast exp and log answer exactly where exact, and decline outside thei
   RoundingGuard guard;
   FastInterval r(-1.0, 1.0);
   CHECK_FALSE(fast_exp::exp(FastInterval(-1.0, 701.0), r));
-  CHECK_FALSE(fast_exp::exp(FastInterval(-kInf, 0.0), r));
+  CHECK_FALSE(fast_exp::exp(FastInterval(-1e8, -720.0), r));  // a subnormal upper end: MPFI's
+  CHECK_FALSE(fast_exp::exp(FastInterval(-1e8, kInf), r));
   CHECK_FALSE(fast_exp::log(FastInterval(0.0, 1.0), r));
   CHECK_FALSE(fast_exp::log(FastInterval(1.0, kInf), r));
   CHECK(r.lower() == -1.0);  // untouched where declined
   CHECK(r.upper() == 1.0);
+}
+
+TEST_CASE("fast exp bounds ends far below 0 by 0 and the least subnormal", "[interval]") {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const double lo = -700 - std::pow(10.0, unit(rng) * 8), hi = (unit(rng) - 0.5) * 1400;
+    if (hi < lo || (hi < -700 && hi >= -746)) continue;
+    const FastInterval e = fast(fast_exp::exp, lo, hi);
+    INFO("exp [" << lo << ", " << hi << "]");
+    REQUIRE(e.lower() == 0);
+    REQUIRE(holds_at(mpfr_exp, lo, e));
+    REQUIRE(holds_at(mpfr_exp, hi, e));
+    for (int k = 0; k < 4; ++k) REQUIRE(holds_at(mpfr_exp, lo + unit(rng) * (hi - lo), e));
+    if (hi >= -700) REQUIRE(near_mpfi(FastInterval(0, e.upper()), rigorous::exp(Interval(-kInf, hi)), 8));
+  }
+  const FastInterval whole = fast(fast_exp::exp, -kInf, 0.0);
+  CHECK(whole.lower() == 0);
+  CHECK(whole.upper() >= 1);
+  const FastInterval tiny = fast(fast_exp::exp, -1e8, -800.0);
+  CHECK(tiny.lower() == 0);
+  CHECK(tiny.upper() == std::numeric_limits<double>::denorm_min());
+  mpfr_t a;  // exp(-746) < 2^-1075, half the least subnormal
+  mpfr_init2(a, 256);
+  mpfr_set_d(a, -746.0, MPFR_RNDN);
+  mpfr_exp(a, a, MPFR_RNDU);
+  CHECK(mpfr_cmp_ui_2exp(a, 1, -1075) < 0);
+  mpfr_clear(a);
 }
