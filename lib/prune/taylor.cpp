@@ -98,7 +98,7 @@ Outcome TaylorRelaxation::contract(Box& box) {
   Box work = box;
   columns_.resize(work.size());
   for (size_t j = 0; j < work.size(); ++j) columns_[j] = static_cast<int>(j);
-  if (!lp::tighten_columns(*solver_, columns_, work, lps_solved_, stop_)) return Outcome::empty;
+  if (!lp::tighten_columns(*solver_, columns_, work, lps_solved_, stop_, lp::Order::nearest_bound)) return Outcome::empty;
   bool changed = false;
   for (size_t i = 0; i < box.size(); ++i)
     changed |= work[i].lower() != box[i].lower() || work[i].upper() != box[i].upper();

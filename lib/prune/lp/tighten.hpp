@@ -16,10 +16,17 @@
 
 namespace linkbox::prune::lp {
 
+// In which order the bounds are tried. `given`: each column's lower then upper bound, in the
+// order of `columns` (the paper's Algorithm 2). `nearest_bound`: next the open bound nearest
+// the last LP's optimal point, relative to its column's width, so that each warm-started LP
+// starts near its optimum (Gleixner et al.'s greedy order). Either order is sound; they may
+// differ in how much a pass prunes, since each bound feeds the LPs after it.
+enum class Order { given, nearest_bound };
+
 // False when the box is proved empty. `stop` (may be null) is asked before each column:
 // every bound so far is proved, so stopping there is sound, only less tight. `lps_solved`
 // counts the LPs.
 bool tighten_columns(LpSolver& solver, std::span<const int> columns, Box& box, long& lps_solved,
-                     const std::function<bool()>* stop);
+                     const std::function<bool()>* stop, Order order = Order::given);
 
 }  // namespace linkbox::prune::lp
