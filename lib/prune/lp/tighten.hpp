@@ -23,9 +23,9 @@ namespace linkbox::prune::lp {
 // differ in how much a pass prunes, since each bound feeds the LPs after it.
 enum class Order { given, nearest_bound };
 
-// False when the box is proved empty. `stop` (may be null) is asked before each column:
-// every bound so far is proved, so stopping there is sound, only less tight. `lps_solved`
-// counts the LPs.
+// False when the box is proved empty. `stop` (may be null) is asked before each column (each
+// LP in nearest-bound order): every bound so far is proved, so stopping there is sound, only
+// less tight. `lps_solved` counts the LPs.
 bool tighten_columns(LpSolver& solver, std::span<const int> columns, Box& box, long& lps_solved,
                      const std::function<bool()>* stop, Order order = Order::given);
 
