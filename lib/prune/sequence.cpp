@@ -54,12 +54,25 @@ std::vector<Counters> Sequence::counters() const {
   return c;
 }
 
+bool Sequence::ran_later_stages() const {
+  for (size_t i = 0; i < members_.size(); ++i)
+    if (stages_[i] > stages_.front() && members_[i]->counters().calls > 0) return true;
+  return false;
+}
+
 void Sequence::add_counters(const Sequence& other) {
   for (size_t i = 0; i < members_.size() && i < other.members_.size(); ++i) {
     Counters sum = members_[i]->counters();
     sum += other.members_[i]->counters();
     members_[i]->set_counters(sum);
   }
+}
+
+void Sequence::take_counters(Sequence& other) {
+  add_counters(other);
+  other.set_counters(std::vector<Counters>(other.members_.size()));
+  staged_->set_stalls(staged_->stalls() + other.stalls());
+  other.staged_->set_stalls(0);
 }
 
 void Sequence::set_counters(const std::vector<Counters>& counters) {

@@ -33,8 +33,15 @@ class Sequence final : public Contractor {
   double operations_per_box() const { return operations_per_box_; }
   double operations() const;  // the members' counters' operations, summed
 
+  // Passes that stalled (Staged::stalls), counted apart from the counters: a box cut short
+  // keeps them.
+  long stalls() const { return staged_->stalls(); }
+  // Whether a member of a stage after the first has run.
+  bool ran_later_stages() const;
+
   std::vector<Counters> counters() const;  // per member
   void add_counters(const Sequence& other);  // same members, e.g. a clone run elsewhere
+  void take_counters(Sequence& other);       // a clone's counters and stalls, left at zero
   void set_counters(const std::vector<Counters>& counters);  // a resumed run
 
  private:

@@ -58,6 +58,7 @@ Outcome Staged::contract(Box& box, Backoff& backoff) {
     at_most_one_ = at_most_one_ || stage.at_most_one_root();
   }
   judge(false);
+  if (backoff.skip == 0 && volume_ratio(stage_start, box, dims_) > stall_) ++stalls_;
   return total;
 }
 

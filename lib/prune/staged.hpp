@@ -32,11 +32,18 @@ class Staged final : public Contractor {
   void stop_when(const std::function<bool()>* request) override;
   void add_work(Counters& counters) const override;
 
+  // Passes after which one more stage would run if there were one: those whose last stage
+  // kept more than `stall` of the volume, outside a backoff. Until the first, a sequence that
+  // adds stages after these makes every box what this one makes it.
+  long stalls() const { return stalls_; }
+  void set_stalls(long n) { stalls_ = n; }
+
  private:
   std::vector<std::unique_ptr<Contractor>> stages_;
   std::vector<int> dims_;
   double stall_;
   bool at_most_one_ = false;
+  long stalls_ = 0;
 };
 
 }  // namespace linkbox::prune

@@ -41,8 +41,27 @@ std::unique_ptr<Racer> make_racer(const formulate::Formulation& formulation, siz
       new Racer{make_pruning(strategy, options, sub), NaturalCertifier(formulation, i), nullptr});
 }
 
-Race::Race(std::vector<std::unique_ptr<Racer>> racers, Sharing* lending)
-    : racers_(std::move(racers)), at_{kFirstTurn, 0, 0, -1, -1, {}, {}}, lending_(lending) {}
+namespace {
+
+bool extends(const Strategy& longer, const Strategy& shorter) {
+  const auto& a = longer.stages();
+  const auto& b = shorter.stages();
+  return a.size() > b.size() && std::equal(b.begin(), b.end(), a.begin());
+}
+
+}  // namespace
+
+Race::Race(std::vector<std::unique_ptr<Racer>> racers, Sharing* lending, bool twins)
+    : racers_(std::move(racers)),
+      extends_(racers_.size(), -1),
+      at_{kFirstTurn, 0, 0, -1, -1, {}, {}},
+      lending_(lending) {
+  if (!twins || lending_) return;
+  for (size_t k = 0; k < racers_.size(); ++k)
+    for (size_t j = 0; j < racers_.size(); ++j)
+      if (extends_[k] < 0 && extends(racers_[k]->pruning.strategy, racers_[j]->pruning.strategy))
+        extends_[k] = static_cast<int>(j);
+}
 
 Race::~Race() {
   if (lending_) lending_->end_lending();
@@ -72,7 +91,13 @@ SubCheckpoint Race::checkpoint() const {
 }
 
 Search& Race::run_turn(int threads) {
-  if (racers_.size() > 1 && at_.target < 0) start_turn();
+  if (racers_.size() > 1 && at_.target < 0) {
+    start_turn();
+    if (copied_twin(running())) return *racers_[running()]->search;
+    const size_t k = running();
+    if (std::find(extends_.begin(), extends_.end(), static_cast<int>(k)) != extends_.end())
+      twin_turn_ = {static_cast<int>(k), racers_[k]->search->work(), at_.target, racers_[k]->pruning.sequence->stalls()};
+  }
   Search& search = *racers_[running()]->search;
   if (racers_.size() == 1) {
     search.run(threads);
@@ -81,10 +106,7 @@ Search& Race::run_turn(int threads) {
     // (look-ahead mode, lookahead.hpp), so the race and its winner do not depend on
     // the thread count.
     search.run(threads, at_.target, at_.turn == kFirstTurn ? kFirstRoundBoxCap : 0);
-    if (search.capped())
-      at_.choices.push_back("turn " + number(at_.turn) + ": " + name_of(running()) + " stopped at a box costing over " +
-                            number(kFirstRoundBoxCap) + " (the first round's cap; " + describe(search) +
-                            "): it shrinks that box again next round");
+    if (search.capped()) note_capped(running());
   }
   if (search.complete() && at_.winner < 0 && racers_.size() > 1)
     at_.choices.push_back(name_of(running()) + " finished its search first (" + describe(search) + "): its boxes are the result");
@@ -102,6 +124,34 @@ void Race::start_turn() {
     lender_ = -1;
   }
   at_.target = target_of(running());
+}
+
+// Candidate k's turn is the last turn of the candidate it extends, box for box, when it has not
+// yet run its own later stages, starts where that turn started, runs to the same target, and
+// that turn had no stall: then k takes that candidate's state, and its counters for the
+// members they share (the first ones, make_pruning).
+bool Race::copied_twin(size_t k) {
+  const int j = extends_[k];
+  if (j < 0 || twin_turn_.candidate != j) return false;
+  Racer& me = *racers_[k];
+  const Racer& twin = *racers_[j];
+  if (me.pruning.sequence->ran_later_stages() || me.search->work() != twin_turn_.work ||
+      at_.target != twin_turn_.target || twin.pruning.sequence->stalls() != twin_turn_.stalls)
+    return false;
+  me.search->set_state(twin.search->state());
+  auto counters = me.pruning.sequence->counters();
+  const auto shared = twin.pruning.sequence->counters();
+  std::copy(shared.begin(), shared.end(), counters.begin());
+  me.pruning.sequence->set_counters(counters);
+  if (twin.search->capped()) note_capped(k);
+  ++twin_turns_;
+  return true;
+}
+
+void Race::note_capped(size_t k) {
+  at_.choices.push_back("turn " + number(at_.turn) + ": " + name_of(k) + " stopped at a box costing over " +
+                        number(kFirstRoundBoxCap) + " (the first round's cap; " + describe(*racers_[k]->search) +
+                        "): it shrinks that box again next round");
 }
 
 // The lead runs first in each round: when it finishes in its turn, the others' shares of that

@@ -10,6 +10,12 @@
 //
 // Spread over processes, the leader lends boxes (share.hpp): their records come back, so the
 // race goes as in one process.
+//
+// Twins: a candidate whose stages extend another's (hc4,newton/lp extends hc4,newton) makes
+// every box what the other makes it until its first stall (prune::Staged::stalls). When the
+// shorter one's turn had no stall, and the longer one's turn starts from the same state with
+// the same target, the longer one takes the shorter one's state instead of running: the same
+// race, without running the same boxes twice.
 #include "formulate/formulation.hpp"
 #include "solve/search.hpp"
 #include "solve/certifier.hpp"
@@ -37,7 +43,8 @@ std::unique_ptr<Racer> make_racer(const formulate::Formulation& formulation, siz
 class Race {
  public:
   // Every racer has its search. `lending`: where a race's leader lends boxes, or nullptr.
-  Race(std::vector<std::unique_ptr<Racer>> racers, Sharing* lending);
+  // `twins`: whether twins share their turns (not with lending, nor where every box is logged).
+  Race(std::vector<std::unique_ptr<Racer>> racers, Sharing* lending, bool twins = true);
   ~Race();  // whichever way the race ends (an exception too), no record is delivered after
   Race(const Race&) = delete;
   Race& operator=(const Race&) = delete;
@@ -68,6 +75,7 @@ class Race {
   // Each candidate's strategy and work, the winner last; empty unless several raced and one won.
   std::vector<std::pair<std::string, double>> record();
   const std::vector<std::string>& choices() const { return at_.choices; }
+  size_t twin_turns() const { return twin_turns_; }  // turns taken from a twin
 
  private:
   void start_turn();
@@ -75,7 +83,18 @@ class Race {
   size_t running() const;  // the candidate whose turn it is
   std::string name_of(size_t k) const;
   double target_of(size_t k) const;
+  bool copied_twin(size_t k);
+  void note_capped(size_t k);
   std::vector<std::unique_ptr<Racer>> racers_;
+  // Per candidate: the candidate whose stages its own extend (twins), or -1.
+  std::vector<int> extends_;
+  // The last turn of a candidate another extends: at its start, its work and stalls, and its target.
+  struct TwinTurn {
+    int candidate = -1;
+    double work = 0, target = 0;
+    long stalls = 0;
+  } twin_turn_;
+  size_t twin_turns_ = 0;
   RacePosition at_;
   Sharing* lending_;
   int lender_ = -1;  // the candidate whose boxes are lent (one only: the first to lend)

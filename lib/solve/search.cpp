@@ -128,10 +128,7 @@ void SearchCore::on_threads(int threads, const std::function<void(prune::Sequenc
     });
   worker(setup.contractor, setup.certifier);
   for (auto& t : pool) t.join();
-  for (int t = 0; t < threads - 1; ++t) {
-    setup.contractor.add_counters(*crew.contractors[t]);
-    crew.contractors[t]->set_counters(std::vector<prune::Counters>(crew.contractors[t]->counters().size()));
-  }
+  for (int t = 0; t < threads - 1; ++t) setup.contractor.take_counters(*crew.contractors[t]);
 }
 
 }  // namespace detail

@@ -117,7 +117,7 @@ bool solve_subproblem(const formulate::Formulation& formulation, size_t i, const
   // A search that does not race gives boxes away; a race's leader lends them (share.hpp).
   Sharing* sharing = racers.size() == 1 ? run.sharing : nullptr;
   Sharing* lending = racers.size() > 1 ? run.sharing : nullptr;
-  Race race(std::move(racers), lending);
+  Race race(std::move(racers), lending, run.options.box_log == nullptr);
   if (resume && resume->phase == SubCheckpoint::Phase::searching) race.resume(i, *resume);
   Deposit deposit(run.checkpoints, i, race);
   if (run.checkpoints.enabled() || sharing || lending)

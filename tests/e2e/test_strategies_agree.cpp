@@ -3,6 +3,7 @@
 #include "formulate/load.hpp"
 #include "interval/rigorous.hpp"
 #include "solve/search.hpp"
+#include "tests/same_search_state.hpp"
 #include "solve/solve_case.hpp"
 #include "solve/share.hpp"
 #include "solve/pruning.hpp"
@@ -161,22 +162,6 @@ std::vector<Stop> stops_of_6r(int threads, int capped_runs) {
   return out;
 }
 
-// The same work, boxes processed, pending paths and solutions (bit for bit).
-void check_same_state(const solve::SearchState& a, const solve::SearchState& b) {
-  CHECK(a.work == b.work);
-  CHECK(a.stats.processed == b.stats.processed);
-  REQUIRE(a.pending.size() == b.pending.size());
-  for (size_t j = 0; j < a.pending.size(); ++j) CHECK(a.pending[j].path == b.pending[j].path);
-  REQUIRE(a.solutions.size() == b.solutions.size());
-  for (size_t j = 0; j < a.solutions.size(); ++j) {
-    CHECK(a.solutions[j].path == b.solutions[j].path);
-    for (size_t d = 0; d < a.solutions[j].box.size(); ++d) {
-      CHECK(a.solutions[j].box[d].lower() == b.solutions[j].box[d].lower());
-      CHECK(a.solutions[j].box[d].upper() == b.solutions[j].box[d].upper());
-    }
-  }
-}
-
 }  // namespace
 
 TEST_CASE("a search cut at work limits stops at the same box on any number of threads", "[strategies]") {
@@ -189,7 +174,7 @@ TEST_CASE("a search cut at work limits stops at the same box on any number of th
   REQUIRE(one.size() == three.size());
   for (size_t k = 0; k < one.size(); ++k) {
     INFO("stop " << k);
-    check_same_state(one[k].state, three[k].state);
+    test::check_same_state(one[k].state, three[k].state);
   }
 }
 
@@ -205,9 +190,9 @@ TEST_CASE("a search with capped boxes stops at the same box on any number of thr
   for (size_t k = 0; k < one.size(); ++k) {
     INFO("stop " << k);
     CHECK(one[k].capped == three[k].capped);
-    check_same_state(one[k].state, three[k].state);
+    test::check_same_state(one[k].state, three[k].state);
   }
-  check_same_state(one.back().state, uncapped.back().state);
+  test::check_same_state(one.back().state, uncapped.back().state);
 }
 
 namespace {
