@@ -7,13 +7,17 @@ namespace linkbox::formulate {
 // With links, the unknowns that stand for functions of the declared variables (a link's y
 // and argument, a quotient, a square root) are not split: propagation narrows them from the
 // declared ones, and splitting them too multiplies the boxes (a link's y often spans many
-// orders of magnitude). Without links every unknown is split.
+// orders of magnitude). Without links every unknown is split, except a power's base (a sum
+// of split unknowns, so splitting it would only split them again, along a diagonal).
 SubProblem PolynomialFormulation::subproblem(size_t) const {
   SubProblem s{"all", system_, {}, nullptr, nullptr, false};
   using Kind = model::Lifting::Source::Kind;
   for (size_t i = 0; i < system_.variables.size(); ++i) {
-    const bool dependent = !system_.links.empty() && (system_.lifting->sources[i].kind == Kind::application ||
-                                                      system_.lifting->sources[i].kind == Kind::argument);
+    const auto& source = system_.lifting ? system_.lifting->sources[i] : model::Lifting::Source{Kind::declared, 0};
+    const bool base = source.kind == Kind::application &&
+                      system_.lifting->applications[source.index].function == model::Application::Function::base;
+    const bool dependent = base || (!system_.links.empty() && (source.kind == Kind::application ||
+                                                               source.kind == Kind::argument));
     if (!dependent) s.split_dims.push_back(static_cast<int>(i));
   }
   return s;

@@ -18,9 +18,10 @@ std::string_view trim(std::string_view s) {
 
 // One side of a comparison, its errors placed in the whole text.
 Polynomial parse_side(std::string_view text, size_t offset, const std::vector<std::string>& variables,
-                      std::vector<model::Application>& applications, IntervalConstants* intervals) {
+                      std::vector<model::Application>& applications, IntervalConstants* intervals,
+                      Powers powers = Powers::expanded) {
   try {
-    return parse_with_functions(text, variables, applications, intervals);
+    return parse_with_functions(text, variables, applications, intervals, powers);
   } catch (const ParseError& e) {
     throw ParseError(e.what(), e.column + static_cast<int>(offset));
   }
@@ -45,7 +46,8 @@ model::Polynomial parse_equation(std::string_view text, const std::vector<std::s
 }
 
 model::Inequality parse_inequality(std::string_view text, const std::vector<std::string>& variables,
-                                   std::vector<model::Application>& applications, IntervalConstants* intervals) {
+                                   std::vector<model::Application>& applications, IntervalConstants* intervals,
+                                   Powers powers) {
   size_t op = std::string_view::npos;
   size_t width = 1;
   for (size_t i = 0; i < text.size(); ++i) {
@@ -62,8 +64,8 @@ model::Inequality parse_inequality(std::string_view text, const std::vector<std:
     width = i + 1 < text.size() && text[i + 1] == '=' ? 2 : 1;
   }
   if (op == std::string_view::npos) throw ParseError("no comparison: an inequality needs <=, >=, < or >", 0);
-  const Polynomial lhs = parse_side(text.substr(0, op), 0, variables, applications, intervals);
-  const Polynomial rhs = parse_side(text.substr(op + width), op + width, variables, applications, intervals);
+  const Polynomial lhs = parse_side(text.substr(0, op), 0, variables, applications, intervals, powers);
+  const Polynomial rhs = parse_side(text.substr(op + width), op + width, variables, applications, intervals, powers);
   model::Inequality c;
   c.g = text[op] == '<' ? lhs - rhs : rhs - lhs;
   c.strict = width == 1;

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace linkbox::input {
 
@@ -21,12 +22,18 @@ constexpr size_t kMaxTermProducts = 1'000'000;
 // A parsed sub-expression. `has_variable` is syntactic: "x - x" folds to 0 but still counts
 // as a function of x, so sin(x - x) is rejected like sin(x).
 struct Value {
+  Value() = default;
+  Value(Polynomial p, bool variable) : poly(std::move(p)), has_variable(variable) {}
   Polynomial poly;
   bool has_variable = false;
+  std::string group;  // a parenthesised sum over two or more variables, as written (Powers)
   Interval constant() const { return poly.constant_term(); }
 };
 
 using Lifted = model::Application::Function;
+
+// A sum whose terms may cancel: two or more terms, over two or more variables.
+bool is_sum(const Polynomial& p) { return p.terms().size() >= 2 && p.variables().size() >= 2; }
 
 struct Function {
   std::string_view name;
@@ -83,8 +90,9 @@ class Parser {
   // `applications`: where functions of variables go; `intervals`: where the genuine interval
   // constants are listed (null: either is an error).
   Parser(std::string_view text, const std::vector<std::string>& variables,
-         std::vector<model::Application>* applications = nullptr, IntervalConstants* intervals = nullptr)
-      : text_(text), variables_(variables), applications_(applications), intervals_(intervals) {}
+         std::vector<model::Application>* applications = nullptr, IntervalConstants* intervals = nullptr,
+         Powers powers = Powers::expanded)
+      : text_(text), variables_(variables), applications_(applications), intervals_(intervals), powers_(powers) {}
 
   Value parse() {
     if (next_token() == text_.size()) fail("empty expression", 0);
@@ -97,6 +105,7 @@ class Parser {
   Value expression() {
     Value v = term();
     for (char op = peek(); op == '+' || op == '-'; op = peek()) {
+      v.group.clear();
       const size_t at = pos_++;
       Value rhs = term();
       if (op == '+')
@@ -115,7 +124,9 @@ class Parser {
       const size_t at = pos_++;
       const size_t rhs_at = next_token();
       Value rhs = unary();
-      if (op == '*')
+      if (op == '*' && v.has_variable && rhs.has_variable)
+        v = multiply(as_written(v, false), as_written(rhs, false), at);
+      else if (op == '*')
         v = multiply(v, rhs, at);
       else if (rhs.has_variable && applications_ && !rhs.poly.is_constant())
         v = multiply(v, reciprocal(rhs, rhs_at), at);
@@ -132,6 +143,7 @@ class Parser {
     const size_t at = pos_++;
     Nesting guard(*this, at);
     Value v = unary();
+    v.group.clear();
     if (c == '-') v.poly = -v.poly;
     return v;
   }
@@ -148,6 +160,7 @@ class Parser {
     const int n = integer_exponent(exponent, exponent_at);
     Value r{Polynomial::constant(Interval(1.0)), base.has_variable};
     if (n == 0) return r;  // x^0 = 1, also for 0^0 (Boost's pow would return empty)
+    if (n >= 2) base = as_written(base, true);
     if (!base.has_variable) {
       r.poly = Polynomial::constant(boost::numeric::pow(base.constant(), n));
     } else {
@@ -171,6 +184,8 @@ class Parser {
       Nesting guard(*this, at);
       Value v = expression();
       expect_closing(at);
+      const bool kept = powers_ == Powers::as_written && applications_ && is_sum(v.poly);
+      v.group = kept ? std::string(text_.substr(at, pos_ - at)) : std::string();
       return v;
     }
     if (c == '[') return interval_constant();
@@ -290,12 +305,20 @@ class Parser {
 
   // The variable standing for f(argument): an equal application is reused, so sin(t) written
   // twice is one unknown.
-  Value application(Lifted f, const Polynomial& argument, std::string text) {
+  Value application(Lifted f, const Polynomial& argument, std::string text, bool raised = false) {
     auto& apps = *applications_;
     size_t k = 0;
     while (k < apps.size() && !(apps[k].function == f && model::same(apps[k].argument, argument))) ++k;
     if (k == apps.size()) apps.push_back({f, argument, std::move(text)});
+    apps[k].raised = apps[k].raised || raised;
     return Value{Polynomial::variable(static_cast<int>(variables_.size() + k)), true};
+  }
+
+  // A parenthesised sum (its group set under Powers::as_written) that is raised to a power or
+  // multiplied by an expression with variables, as an application (expression.hpp says why);
+  // model::lift expands one that is never raised.
+  Value as_written(const Value& v, bool raised) {
+    return v.group.empty() ? v : application(Lifted::base, v.poly, v.group, raised);
   }
 
   // 1/B for a divisor with variables, as the application its text names. When B = c B',
@@ -443,6 +466,7 @@ class Parser {
   const std::vector<std::string>& variables_;
   std::vector<model::Application>* applications_;
   IntervalConstants* intervals_;
+  Powers powers_;
   size_t pos_ = 0;
   int depth_ = 0;
 };
@@ -454,8 +478,9 @@ model::Polynomial parse_polynomial(std::string_view text, const std::vector<std:
 }
 
 model::Polynomial parse_with_functions(std::string_view text, const std::vector<std::string>& variables,
-                                       std::vector<model::Application>& applications, IntervalConstants* intervals) {
-  return Parser(text, variables, &applications, intervals).parse().poly;
+                                       std::vector<model::Application>& applications, IntervalConstants* intervals,
+                                       Powers powers) {
+  return Parser(text, variables, &applications, intervals, powers).parse().poly;
 }
 
 Interval parse_constant(std::string_view text, IntervalConstants* intervals) {

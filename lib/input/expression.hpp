@@ -55,9 +55,19 @@ model::Polynomial parse_polynomial(std::string_view text, const std::vector<std:
 // once (an equal one already there is reused) and stands for variable
 // variables.size() + its index. With `intervals`, interval constants are allowed and listed
 // there (null: they are an error).
+//
+// With Powers::as_written, a parenthesised sum A over two or more variables that is raised to
+// a power somewhere is an application too (model::Application::Function::base), which
+// model::lift makes one unknown, shared by the power and by every product of A with an
+// expression with variables ((x - y)^3, exp(z) * (x - y)); a sum that is only ever multiplied
+// is expanded. The roots are the same; the unknown keeps interval evaluation from losing the
+// cancellation between the expanded terms, as the peers' expression graphs do. The peers'
+// readers read so; the TOML reader expands (Powers::expanded), so that a TOML case's unknowns
+// are those it declares and its functions', in which its curve maps are stated.
+enum class Powers { expanded, as_written };
 model::Polynomial parse_with_functions(std::string_view text, const std::vector<std::string>& variables,
                                        std::vector<model::Application>& applications,
-                                       IntervalConstants* intervals = nullptr);
+                                       IntervalConstants* intervals = nullptr, Powers powers = Powers::expanded);
 
 // An equation "lhs = rhs" (lhs - rhs = 0) or an expression (= 0), with functions as above.
 model::Polynomial parse_equation(std::string_view text, const std::vector<std::string>& variables,
@@ -68,7 +78,7 @@ model::Polynomial parse_equation(std::string_view text, const std::vector<std::s
 // with functions as above. `name` of the result is the text.
 model::Inequality parse_inequality(std::string_view text, const std::vector<std::string>& variables,
                                    std::vector<model::Application>& applications,
-                                   IntervalConstants* intervals = nullptr);
+                                   IntervalConstants* intervals = nullptr, Powers powers = Powers::expanded);
 
 // Parses a constant expression such as "pi/2", "acos(-1/3)" or "-0.7448995469549714"; with
 // `intervals`, one that uses interval constants too (its value encloses every value).

@@ -31,7 +31,7 @@ void add_parsed_inequality(Draft& d, const Draft::Comparison& q, const std::vect
                            const std::string& file) {
   Text t = write_comparison(q.lhs, q.op, q.rhs, file, q.line);
   model::Inequality c = parse_text(t, q.line, q.label, file, [&](const std::string& text) {
-    return parse_inequality(text, names, d.raw.applications, &d.raw.interval_constants);
+    return parse_inequality(text, names, d.raw.applications, &d.raw.interval_constants, Powers::as_written);
   });
   if (c.g.variables().empty()) throw InputError(file, q.line, q.label + " involves no variable (it is constant)");
   d.raw.inequalities.push_back(std::move(c));
@@ -76,7 +76,8 @@ void add_equation(Draft& d, const NodePtr& lhs, const NodePtr& rhs, int line, co
                   const std::string& file) {
   Text t = write_equation(lhs, rhs, file, line);
   model::Polynomial p = parse_text(t, line, label, file, [&](const std::string& text) {
-    return parse_with_functions(text, names_of(d.raw), d.raw.applications, &d.raw.interval_constants);
+    return parse_with_functions(text, names_of(d.raw), d.raw.applications, &d.raw.interval_constants,
+                                Powers::as_written);
   });
   if (p.variables().empty()) throw InputError(file, line, label + " involves no variable (it is constant)");
   d.raw.equations.push_back(std::move(p));

@@ -2,8 +2,9 @@
 // Shared by the readers of the peers' formats; internal to lib/input. A peer's declarations
 // and constraints, as trees (peer_syntax.hpp), into the same raw system a TOML polynomial
 // case becomes (model/lifting.hpp): functions of variables are kept as applications and
-// lifted at the end, so anything the TOML reader accepts, a peer's reader accepts. Every
-// failure is an InputError at the source line.
+// lifted at the end, so anything the TOML reader accepts, a peer's reader accepts. Powers of
+// sums are read as written (input::Powers), as the peers evaluate them. Every failure is an
+// InputError at the source line.
 #include <string>
 #include <vector>
 

@@ -158,6 +158,10 @@ void Lifter::add_application_unknowns() {
       add_cleared_divisor(k);
       continue;
     }
+    if (expanded_[k]) {
+      image_[n_ + k] = substitute(a.argument, image_);
+      continue;
+    }
     if (is_angle_use(k) && a.function != Function::tan) {
       image_[n_ + k] = substitute(a.function == Function::cos ? expansions_[k].re : expansions_[k].im, symbol_);
       continue;
@@ -169,6 +173,7 @@ void Lifter::add_application_unknowns() {
     if (a.function == Function::tan) add_tan_unknown(k, x);
     else if (a.function == Function::sqrt) add_sqrt_unknown(k, x);
     else if (a.function == Function::reciprocal) add_reciprocal_unknown(k, x);
+    else if (a.function == Function::base) add_base_unknown(k, x);
     else if (link_function(a.function, f)) add_link_unknown(k, f, index);
     else add_link_unknown(k, a.function == Function::sin ? Elementary::sin : Elementary::cos, index);  // linked_
   }
@@ -215,6 +220,14 @@ void Lifter::add_reciprocal_unknown(int k, const Polynomial& x) {
   add_variable(a.text, padded(Interval(1.0) / range), {Lifting::Source::Kind::application, k});
   definitions_.emplace_back(x * substitute(a.argument, image_) - one(), a.text + " * divisor = 1");
   lifting_->notes.push_back(a.text + " -> an unknown q with q * divisor = 1 (the divisor is away from 0 on the domain)");
+}
+
+// b with b - A = 0; its domain is A's range over the domain.
+void Lifter::add_base_unknown(int k, const Polynomial& x) {
+  const Application& a = raw_.applications[k];
+  add_variable(a.text, padded(argument_range(k)), {Lifting::Source::Kind::application, k});
+  definitions_.emplace_back(x - substitute(a.argument, image_), a.text + " as one unknown");
+  lifting_->notes.push_back(a.text + " -> an unknown b with b = it, where it is raised to a power or multiplied (not expanded)");
 }
 
 // y = f(a): y is unknown `y` (added here), a the argument's unknown (argument_unknown).
@@ -357,6 +370,8 @@ System lift(const RawSystem& raw) {
     s.inequalities = raw.inequalities;
   } else {
     s = detail::Lifter(raw).run();
+    if (s.lifting->notes.empty() && s.variables.size() == raw.variables.size())
+      s.lifting.reset();  // only sums that were never raised, all expanded: nothing was lifted
   }
   s.interval_constants = raw.interval_constants;
   s.assumed_bounds = raw.assumed_bounds;

@@ -70,6 +70,7 @@ class Lifter {
   void add_tan_unknown(int k, const Polynomial& x);
   void add_sqrt_unknown(int k, const Polynomial& x);
   void add_reciprocal_unknown(int k, const Polynomial& x);
+  void add_base_unknown(int k, const Polynomial& x);
   // The divisors that may be 0 (lifter_divisors.cpp).
   void find_cleared();
   void add_cleared_divisor(int k);
@@ -99,6 +100,7 @@ class Lifter {
   // Per application: a reciprocal whose divisor is cleared (no unknown), and that divisor
   // over the lifted unknowns and the earlier cleared quotients.
   std::vector<bool> cleared_;
+  std::vector<bool> expanded_;  // per application: a base that holds a cleared divisor
   std::vector<Polynomial> divisors_;
   System out_;
   Lifting* lifting_ = nullptr;

@@ -16,16 +16,25 @@ constexpr size_t kMaxClearedTerms = 200'000;
 }  // namespace
 
 // A reciprocal is cleared when its divisor's range over the domain holds 0 or is unbounded,
-// or when its divisor divides by a cleared one. Any other function of a cleared quotient is
-// refused: its argument's range, which its unknown's domain comes from, is not bounded.
+// or when its divisor divides by a cleared one. A sum's base that holds a cleared quotient, or
+// that is never raised to a power, is expanded in place. Any other function of a cleared quotient is refused: its argument's
+// range, which its unknown's domain comes from, is not bounded.
 void Lifter::find_cleared() {
   const int count = static_cast<int>(raw_.applications.size());
   cleared_.assign(count, false);
+  expanded_.assign(count, false);
   divisors_.assign(count, Polynomial());
+  std::vector<bool> holds_cleared(count, false);  // a base whose sum holds a cleared quotient
   for (int k = 0; k < count; ++k) {
     const Application& a = raw_.applications[k];
     bool through_cleared = false;
-    for (int v : a.argument.variables()) through_cleared = through_cleared || (v >= n_ && cleared_[v - n_]);
+    for (int v : a.argument.variables())
+      through_cleared = through_cleared || (v >= n_ && (cleared_[v - n_] || holds_cleared[v - n_]));
+    if (a.function == Function::base) {
+      holds_cleared[k] = through_cleared;
+      expanded_[k] = through_cleared || !a.raised;
+      continue;
+    }
     if (a.function != Function::reciprocal) {
       if (through_cleared)
         fail_application(k, a.text + ": its argument has a divisor that may be 0 on the domain, so its range is "

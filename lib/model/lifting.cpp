@@ -43,6 +43,7 @@ const char* to_string(Application::Function f) {
     case Function::tan: return "tan";
     case Function::sqrt: return "sqrt";
     case Function::reciprocal: return "1/";
+    case Function::base: return "base";
     default: {
       Elementary e;
       if (link_function(f, e)) return to_string(e);
@@ -79,6 +80,7 @@ Interval enclose(const Application& a, const Interval& x) {
     case Function::reciprocal:
       if (zero_in(x)) throw std::domain_error(a.text + ": the divisor may be 0");
       return Interval(1.0) / x;
+    case Function::base: return x;
     default: {
       Elementary e;
       link_function(a.function, e);

@@ -26,6 +26,14 @@
 //    any polynomial equation. tan of such an argument is rejected.
 //  - tan(A) of an angle expression that is not "tan only": an unknown tau with tau cos(A) =
 //    sin(A); A's range over the domain must avoid the poles (tau's domain is tan of it).
+//  - base: a sum A over two or more variables raised to a power, where the reader keeps it as
+//    written (input/expression.hpp: the peers' readers), e.g. (x - y)^3: an unknown b with
+//    the equation b - A = 0 and A's range as its domain, so that A^k is b^k, and every
+//    product of A with an expression with variables (exp(z) * A) is a product with b.
+//    Expanded, A^3 is a sum of terms that cancel, which interval evaluation cannot see (near
+//    x = y = 200 with widths of 1e-3 it spans hundreds); b^3 keeps it. Its roots are the
+//    case's one to one (b is a function of the variables). A sum that is never raised, or
+//    that holds a cleared divisor (below), is expanded.
 //  - sqrt(A) (and A^(k + 1/2)) of any expression: an unknown r with r^2 = A, r >= 0 (the
 //    domain of r is [0, sqrt(max A)]).
 //  - 1/B (a division by an expression with variables, A/B = A * (1/B)): an unknown q with
@@ -63,10 +71,11 @@ namespace linkbox::model {
 // A function applied to an expression with variables, as the parser meets it. In a
 // RawSystem, variable index n + k (n = declared variables) stands for application k.
 struct Application {
-  enum class Function { sin, cos, tan, sqrt, exp, log, sinh, cosh, tanh, asin, acos, atan, reciprocal };
+  enum class Function { sin, cos, tan, sqrt, exp, log, sinh, cosh, tanh, asin, acos, atan, reciprocal, base };
   Function function;
   Polynomial argument;  // over the declared variables and the applications before this one
   std::string text;     // as written, e.g. "sin(2*t + pi/4)": names and messages
+  bool raised = false;  // base: raised to a power somewhere (else it is expanded in place)
 };
 const char* to_string(Application::Function f);
 // An enclosure of the application's value where its argument is in `x` (reciprocal: 1/x).
