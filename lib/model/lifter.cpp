@@ -159,7 +159,7 @@ void Lifter::add_application_unknowns() {
       continue;
     }
     if (expanded_[k]) {
-      image_[n_ + k] = substitute(a.argument, image_);
+      image_[n_ + k] = substituted(a.argument, k);
       continue;
     }
     if (is_angle_use(k) && a.function != Function::tan) {
@@ -203,7 +203,7 @@ void Lifter::add_sqrt_unknown(int k, const Polynomial& x) {
   }
   if (!is_finite(range)) fail_application(k, a.text + ": its argument is not bounded on the domain");
   add_variable(a.text, Interval(0.0, range.upper()), {Lifting::Source::Kind::application, k});
-  definitions_.emplace_back(x.pow(2) - substitute(a.argument, image_), a.text + "^2 = its argument");
+  definitions_.emplace_back(x.pow(2) - substituted(a.argument, k), a.text + "^2 = its argument");
   lifting_->notes.push_back(a.text + " -> an unknown r >= 0 with r^2 = its argument");
 }
 
@@ -218,7 +218,7 @@ void Lifter::add_reciprocal_unknown(int k, const Polynomial& x) {
     fail_application(k, a.text + ": the divisor is not defined on the domain (" + e.what() + ")");
   }
   add_variable(a.text, padded(Interval(1.0) / range), {Lifting::Source::Kind::application, k});
-  definitions_.emplace_back(x * substitute(a.argument, image_) - one(), a.text + " * divisor = 1");
+  definitions_.emplace_back(x * substituted(a.argument, k) - one(), a.text + " * divisor = 1");
   lifting_->notes.push_back(a.text + " -> an unknown q with q * divisor = 1 (the divisor is away from 0 on the domain)");
 }
 
@@ -226,7 +226,7 @@ void Lifter::add_reciprocal_unknown(int k, const Polynomial& x) {
 void Lifter::add_base_unknown(int k, const Polynomial& x) {
   const Application& a = raw_.applications[k];
   add_variable(a.text, padded(argument_range(k)), {Lifting::Source::Kind::application, k});
-  definitions_.emplace_back(x - substitute(a.argument, image_), a.text + " as one unknown");
+  definitions_.emplace_back(x - substituted(a.argument, k), a.text + " as one unknown");
   lifting_->notes.push_back(a.text + " -> an unknown b with b = it, where it is raised to a power or multiplied (not expanded)");
 }
 
@@ -255,7 +255,7 @@ void Lifter::add_link_unknown(int k, Elementary f, int y) {
 // The unknown standing for application k's argument A: A itself when it is one unknown, else
 // a new one with the equation a - A = 0 and A's range within f's domain.
 int Lifter::argument_unknown(int k, Elementary f, const Interval& range) {
-  const Polynomial arg = substitute(raw_.applications[k].argument, image_);
+  const Polynomial arg = substituted(raw_.applications[k].argument, k);
   if (arg.terms().size() == 1) {
     const auto& [powers, c] = *arg.terms().begin();
     if (powers.size() == 1 && powers[0].second == 1 && same_bounds(c, Interval(1.0))) return powers[0].first;
@@ -270,12 +270,28 @@ int Lifter::argument_unknown(int k, Elementary f, const Interval& range) {
   return a;
 }
 
+// p with every application replaced by its image. Sums that are multiplied but never raised
+// are expanded here, so the parser's bound on the terms of a product is enforced here too.
+Polynomial Lifter::substituted(const Polynomial& p, int application, int equation, int inequality) const {
+  constexpr double kMaxTerms = 1e6;
+  double terms = 0;
+  for (auto& [powers, c] : p.terms()) {
+    double t = 1;
+    for (auto [v, e] : powers) t *= std::pow(static_cast<double>(std::max<size_t>(image_[v].terms().size(), 1)), e);
+    terms += t;
+  }
+  if (terms > kMaxTerms)
+    throw LiftError("expands to more than 1000000 terms once its products of sums are multiplied out", -1,
+                    application, equation, inequality);
+  return substitute(p, image_);
+}
+
 // Equations and inequalities as typed (what defines the new unknowns comes last, in build).
 void Lifter::add_typed_constraints() {
   const bool clearing = std::find(cleared_.begin(), cleared_.end(), true) != cleared_.end();
   const std::string once = clearing ? "once sin and cos are expanded and divisors cleared" : "once sin and cos are expanded";
   for (size_t i = 0; i < raw_.equations.size(); ++i) {
-    Polynomial p = clear(substitute(raw_.equations[i], image_), false, -1);
+    Polynomial p = clear(substituted(raw_.equations[i], -1, static_cast<int>(i)), false, -1);
     if (p.is_constant())
       throw LiftError("equation " + std::to_string(i + 1) + " is constant " + once +
                           " (an identity such as sin(t)^2 + cos(t)^2 = 1, or a contradiction)",
@@ -286,7 +302,7 @@ void Lifter::add_typed_constraints() {
   for (size_t i = 0; i < raw_.inequalities.size(); ++i) {
     const Inequality& c = raw_.inequalities[i];
     Inequality lifted = c;
-    lifted.g = clear(substitute(c.g, image_), true, -1);
+    lifted.g = clear(substituted(c.g, -1, -1, static_cast<int>(i)), true, -1);
     if (lifted.g.is_constant())
       throw LiftError("inequality \"" + c.name + "\" is constant " + once, -1, -1, -1, static_cast<int>(i));
     out_.inequalities.push_back(std::move(lifted));

@@ -71,6 +71,7 @@ class Lifter {
   void add_sqrt_unknown(int k, const Polynomial& x);
   void add_reciprocal_unknown(int k, const Polynomial& x);
   void add_base_unknown(int k, const Polynomial& x);
+  Polynomial substituted(const Polynomial& p, int application, int equation = -1, int inequality = -1) const;
   // The divisors that may be 0 (lifter_divisors.cpp).
   void find_cleared();
   void add_cleared_divisor(int k);

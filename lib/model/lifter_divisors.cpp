@@ -60,7 +60,7 @@ void Lifter::find_cleared() {
 void Lifter::add_cleared_divisor(int k) {
   const Application& a = raw_.applications[k];
   image_[n_ + k] = Polynomial::variable(kQuotientSymbol + k);
-  divisors_[k] = substitute(a.argument, image_);
+  divisors_[k] = substituted(a.argument, k);
   Inequality nonzero;
   nonzero.g = clear(-divisors_[k].pow(2), true, k);
   nonzero.strict = true;

@@ -4,6 +4,7 @@
 // only multiplied stays expanded (no idle unknown).
 #include "formulate/load.hpp"
 #include "input/expression.hpp"
+#include "input/input_error.hpp"
 #include "model/lifting.hpp"
 #include "prune/hc4.hpp"
 #include "tests/solved_case.hpp"
@@ -106,5 +107,19 @@ end
     REQUIRE(run.roots.size() == 2);
     CHECK((near(run.roots[0], x1, x1 - 0.1, 0) || near(run.roots[1], x1, x1 - 0.1, 0)));
     CHECK((near(run.roots[0], x2, x2 - 0.1, 0) || near(run.roots[1], x2, x2 - 0.1, 0)));
+  }
+}
+
+TEST_CASE("power bases: a product of sums too large to expand is refused at its line", "[functions][power-bases]") {
+  // 21 sums of two terms multiplied: 2^21 terms once expanded (each sum is only multiplied).
+  std::string product = "(x + y)";
+  for (int k = 1; k <= 20; ++k) product += "*(x + " + std::to_string(k + 1) + "*y)";
+  const std::string bch = "Variables\n x in [0, 1];\n y in [0, 1];\nConstraints\n x = y;\n " + product + " = 1;\nend\n";
+  try {
+    formulate::load_case_text(bch, "big.bch");
+    FAIL("read without error");
+  } catch (const input::InputError& e) {
+    CHECK(e.line == 6);
+    CHECK(e.message.find("more than 1000000 terms") != std::string::npos);
   }
 }
