@@ -163,7 +163,9 @@ void Lifter::add_application_unknowns() {
       continue;
     }
     if (is_angle_use(k) && a.function != Function::tan) {
-      image_[n_ + k] = substitute(a.function == Function::cos ? expansions_[k].re : expansions_[k].im, symbol_);
+      const Polynomial e = substitute(a.function == Function::cos ? expansions_[k].re : expansions_[k].im, symbol_);
+      if (e.total_degree() >= 2 && multiplied(k)) add_trig_unknown(k, e);
+      else image_[n_ + k] = e;
       continue;
     }
     const int index = static_cast<int>(out_.variables.size());
@@ -177,6 +179,35 @@ void Lifter::add_application_unknowns() {
     else if (link_function(a.function, f)) add_link_unknown(k, f, index);
     else add_link_unknown(k, a.function == Function::sin ? Elementary::sin : Elementary::cos, index);  // linked_
   }
+}
+
+// Whether application k's value is multiplied by an expression with variables, or raised to
+// a power, in a typed constraint or an argument.
+bool Lifter::multiplied(int k) const {
+  const auto in = [v = n_ + k](const Polynomial& p) {
+    for (auto& [powers, c] : p.terms()) {
+      int degree = 0;
+      bool has = false;
+      for (auto [x, e] : powers) degree += e, has = has || x == v;
+      if (has && degree >= 2) return true;
+    }
+    return false;
+  };
+  return std::any_of(raw_.equations.begin(), raw_.equations.end(), in) ||
+         std::any_of(raw_.inequalities.begin(), raw_.inequalities.end(), [&](auto& q) { return in(q.g); }) ||
+         std::any_of(raw_.applications.begin(), raw_.applications.end(), [&](auto& a) { return in(a.argument); });
+}
+
+// sin or cos of a multiple or a sum of angles that is multiplied: an unknown y with y - E = 0,
+// E its expansion in the angles' cos and sin (lifting.hpp).
+void Lifter::add_trig_unknown(int k, const Polynomial& expansion) {
+  const Application& a = raw_.applications[k];
+  const Polynomial y = Polynomial::variable(static_cast<int>(out_.variables.size()));
+  add_variable(a.text, enclose(a, argument_range(k)), {Lifting::Source::Kind::application, k});
+  definitions_.emplace_back(y - expansion, a.text + " as one unknown");
+  image_[n_ + k] = y;
+  lifting_->notes.push_back(a.text + " -> an unknown y with y = its expansion in cos and sin of the angles, "
+                                     "where it is multiplied (not expanded in the products)");
 }
 
 void Lifter::add_tan_unknown(int k, const Polynomial& x) {

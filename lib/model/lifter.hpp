@@ -67,6 +67,8 @@ class Lifter {
   void add_declared_unknowns();
   void add_angle_unknowns(int j);
   void add_application_unknowns();
+  bool multiplied(int k) const;
+  void add_trig_unknown(int k, const Polynomial& expansion);
   void add_tan_unknown(int k, const Polynomial& x);
   void add_sqrt_unknown(int k, const Polynomial& x);
   void add_reciprocal_unknown(int k, const Polynomial& x);

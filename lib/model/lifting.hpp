@@ -21,6 +21,11 @@
 //    A domain wider than a full turn (u's width provably > 2 pi) is rejected: the map back
 //    from (c, s) would not be one to one. A full turn (e.g. [-pi, pi]) is the whole circle:
 //    a root on the seam is one root, reported near the domain's upper end.
+//    sin or cos of a multiple or a sum of angles (an expansion of degree 2 or more) that is
+//    multiplied by an expression with variables, or raised, is an unknown y with the
+//    equation y - (its expansion) = 0: expanded, C cos(3t) is C (4 c^3 - 3 c), whose C
+//    occurs twice, so interval evaluation overestimates it; C y keeps it exact. Its domain
+//    is sin or cos of the argument's range.
 //    sin and cos of anything else (an argument that is not affine, or has a variable that
 //    also occurs outside sin, cos and tan) are links, below: t and cos(t) are not related by
 //    any polynomial equation. tan of such an argument is rejected.

@@ -158,6 +158,30 @@ TEST_CASE("only what is used is modelled: cos alone, sin alone, tan alone, or th
   CHECK(has_root_near(circle.roots, {-std::acos(0.25)}, 1e-13));
 }
 
+TEST_CASE("sin and cos of a multiple angle that is multiplied are unknowns of their own", "[functions]") {
+  // r cos(2t) = 1.5, r sin(2t) = 2, q = sin(t) on t in [0, 3]: (r, 2t) is (2.5, a) or
+  // (-2.5, a + pi), a = atan2(2, 1.5), so t is a/2 or a/2 + pi/2 (sin(t) makes t the angle).
+  Run run = solve_text(polynomial_case(
+      R"~({ name = "r", domain = [-10, 10] }, { name = "t", domain = [0, 3] }, { name = "q", domain = [-1, 1] })~",
+      R"~("r*cos(2*t) = 1.5", "r*sin(2*t) = 2", "q = sin(t)")~"));
+  const auto& s = system_of(run);
+  REQUIRE(s.lifting);
+  // r, cos t, sin t, q, cos(2t), sin(2t): the products r cos(2t) stay bilinear.
+  REQUIRE(s.variables.size() == 6);
+  CHECK(s.variables[4].name == "cos(2*t)");
+  CHECK(s.variables[5].name == "sin(2*t)");
+  CHECK(s.equations.size() == 6);  // three typed, the circle, two definitions
+  CHECK(run.v.exact);
+  CHECK(verify::check_certificates(run.j, *run.c.formulation).failures.empty());
+  REQUIRE(run.roots.size() == 2);
+  const double a = std::atan2(2.0, 1.5);
+  CHECK(has_root_near(run.roots, {2.5, a / 2, std::sin(a / 2)}, 1e-12));
+  CHECK(has_root_near(run.roots, {-2.5, a / 2 + M_PI / 2, std::sin(a / 2 + M_PI / 2)}, 1e-12));
+  // Not multiplied: cos(2t) stays its expansion (no unknown is added for it).
+  Run alone = solve_text(polynomial_case(R"~({ name = "t", domain = ["-pi", "pi"] })~", R"~("cos(2*t) + sin(t) = 1")~"));
+  CHECK(system_of(alone).variables.size() == 2);
+}
+
 TEST_CASE("an angle domain of less than a turn counts only roots on its arc", "[functions]") {
   // sin(t) = sin(5.2) has roots 5.2 and 3 pi - 5.2 = 4.2248 in [0, 2 pi]. On [1, 5] the
   // box of (cos t, sin t), [-1, cos 1] x [-1, 1], still holds the point of angle 5.2
