@@ -16,8 +16,9 @@ using F = FastInterval;
 constexpr int kTerms = 9;
 // Beyond this the reduction's error (k times the width of pi/2's enclosure) grows: MPFI.
 constexpr double kLargest = 1 << 20;
-// Wider intervals are rare in hot loops and cost more ends and extrema: MPFI.
-constexpr double kWidest = 8;
+// An interval this wide holds a whole period (2 pi < 6.3, whatever the subtraction's
+// rounding), so both extrema of sin and of cos.
+constexpr double kFullTurn = 6.3;
 
 struct Constants {
   std::array<F, 2 * kTerms + 2> inverse_factorial;  // 1/k!, k <= 2 kTerms + 1
@@ -86,7 +87,8 @@ SinCos by_mpfi(const F& x) {
 
 SinCos sin_cos(const FastInterval& x) {
   const double lo = x.lower(), hi = x.upper();
-  if (!(std::fabs(lo) <= kLargest && std::fabs(hi) <= kLargest && hi - lo <= kWidest)) return by_mpfi(x);
+  if (hi - lo >= kFullTurn) return {F(-1.0, 1.0), F(-1.0, 1.0)};  // infinite ends too
+  if (!(std::fabs(lo) <= kLargest && std::fabs(hi) <= kLargest)) return by_mpfi(x);
   const SinCos a = at(lo), b = lo == hi ? a : at(hi);
   SinCos r{join(a.sin, b.sin), join(a.cos, b.cos)};
   // The extrema lie at the multiples m pi/2; one the interval may hold (its enclosure meets

@@ -3,8 +3,8 @@
 // pi/2 and evaluated by Taylor polynomials whose remainder is bounded (Lagrange form), all
 // outward rounded, and the extrema at the multiples of pi/2 that the interval may hold are
 // added. An enclosure of the range like rigorous::sin/cos (MPFI), a few ulps wider, without
-// libm and without multi-precision, for hot loops. Arguments far from 0, wide or not finite
-// go to rigorous::.
+// libm and without multi-precision, for hot loops. An interval wider than a period gives
+// [-1, 1] at once; arguments far from 0 (or NaN) go to rigorous::.
 #include "interval/interval.hpp"
 
 namespace linkbox::fast_trig {
