@@ -11,6 +11,7 @@ nlohmann::json search_settings(const solve::RunOptions& o) {
           {"prune", o.strategy.prune.text()},
           {"bisect", solve::to_string(o.bisect)},
           {"lp", prune::lp::to_string(o.strategy.lp)},
+          {"lp_order", prune::lp::to_string(o.strategy.lp_order)},
           {"arith", to_string(o.strategy.arith)}};
 }
 
@@ -53,6 +54,9 @@ void resume_settings(SolveCommand& cmd, const nlohmann::json& saved) {
   take("--bisect", "bisect", [&](const nlohmann::json& v) { o.bisect = solve::parse_bisect(v); });
   take("--lp", "lp", [&](const nlohmann::json& v) {
     o.strategy.lp = v == "exact" ? prune::lp::LpBackend::exact : prune::lp::LpBackend::safe;
+  });
+  take("--lp-order", "lp_order", [&](const nlohmann::json& v) {
+    o.strategy.lp_order = v == "given" ? prune::lp::Order::given : prune::lp::Order::nearest_bound;
   });
   take("--arith", "arith", [&](const nlohmann::json& v) {
     o.strategy.arith = v == "verified" ? Arith::verified : Arith::float_unverified;

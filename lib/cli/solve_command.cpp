@@ -76,6 +76,12 @@ void add_search_flags(CLI::App& cmd, SolveCommand& s) {
       ->type_name("safe|exact")
       ->transform(choice(std::map<std::string, prune::lp::LpBackend>{
           {"safe", prune::lp::LpBackend::safe}, {"exact", prune::lp::LpBackend::exact}}));
+  cmd.add_option("--lp-order", o.strategy.lp_order,
+                 "which bound the lp contractor tightens next: the open bound nearest the last LP's optimum "
+                 "(default), or each variable's lower then upper bound in turn, as the iterated-LP paper's Algorithm 2")
+      ->type_name("nearest|given")
+      ->transform(choice(std::map<std::string, prune::lp::Order>{{"nearest", prune::lp::Order::nearest_bound},
+                                                                 {"given", prune::lp::Order::given}}));
   cmd.add_option("--arith", o.strategy.arith, "float is the UNVERIFIED float variant, for comparison (default verified)")
       ->type_name("verified|float")
       ->transform(choice(

@@ -75,16 +75,16 @@ bool linear_equations_possible(const model::LphSystem& system, const Box& box) {
   return true;
 }
 
-LpRelaxation::LpRelaxation(const model::LphSystem& system, lp::LpBackend backend)
-    : LpRelaxation(std::make_shared<const model::LphSystem>(system), backend) {}
+LpRelaxation::LpRelaxation(const model::LphSystem& system, lp::LpBackend backend, lp::Order order)
+    : LpRelaxation(std::make_shared<const model::LphSystem>(system), backend, order) {}
 
-LpRelaxation::LpRelaxation(std::shared_ptr<const model::LphSystem> system, lp::LpBackend backend)
-    : system_(std::move(system)), backend_(backend), solver_(lp::make_lp_solver(backend)) {}
+LpRelaxation::LpRelaxation(std::shared_ptr<const model::LphSystem> system, lp::LpBackend backend, lp::Order order)
+    : system_(std::move(system)), backend_(backend), order_(order), solver_(lp::make_lp_solver(backend)) {}
 
 std::string LpRelaxation::name() const { return "lp-" + lp::to_string(backend_); }
 
 std::unique_ptr<Contractor> LpRelaxation::clone() const {
-  return std::unique_ptr<Contractor>(new LpRelaxation(system_, backend_));
+  return std::unique_ptr<Contractor>(new LpRelaxation(system_, backend_, order_));
 }
 
 void LpRelaxation::add_work(Counters& counters) const {
@@ -101,7 +101,7 @@ Outcome LpRelaxation::contract(Box& box) {
 
   if (system_->primary.empty()) return finish(box, std::move(work));
   solver_->load(lp::build_lph_relaxation(*system_, work));
-  if (!lp::tighten_columns(*solver_, system_->primary, work, lps_solved_, stop_)) return Outcome::empty;
+  if (!lp::tighten_columns(*solver_, system_->primary, work, lps_solved_, stop_, order_)) return Outcome::empty;
   return finish(box, std::move(work));
 }
 

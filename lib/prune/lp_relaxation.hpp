@@ -7,6 +7,7 @@
 #include "model/lph.hpp"
 #include "prune/contractor.hpp"
 #include "prune/lp/lp_solver.hpp"
+#include "prune/lp/tighten.hpp"
 
 #include <memory>
 
@@ -23,7 +24,9 @@ bool linear_equations_possible(const model::LphSystem& system, const Box& box);
 
 class LpRelaxation final : public Contractor {
  public:
-  explicit LpRelaxation(const model::LphSystem& system, lp::LpBackend backend = lp::LpBackend::safe);
+  // `order`: which bound each pass tightens next (lp/tighten.hpp); `given` is the paper's.
+  explicit LpRelaxation(const model::LphSystem& system, lp::LpBackend backend = lp::LpBackend::safe,
+                        lp::Order order = lp::Order::nearest_bound);
   std::string name() const override;  // "lp-safe" or "lp-exact"
   Outcome contract(Box& box) override;
   std::unique_ptr<Contractor> clone() const override;
@@ -33,10 +36,11 @@ class LpRelaxation final : public Contractor {
   long lps_solved() const { return lps_solved_; }  // a min or a max each
 
  private:
-  LpRelaxation(std::shared_ptr<const model::LphSystem> system, lp::LpBackend backend);
+  LpRelaxation(std::shared_ptr<const model::LphSystem> system, lp::LpBackend backend, lp::Order order);
 
   std::shared_ptr<const model::LphSystem> system_;  // shared read-only by clones
   lp::LpBackend backend_;
+  lp::Order order_;
   std::unique_ptr<lp::LpSolver> solver_;  // per instance: holds warm-start state
   long lps_solved_ = 0;
   const std::function<bool()>* stop_ = nullptr;

@@ -37,6 +37,7 @@ json parameters_json(const solve::RunOptions& options, const solve::CaseResult& 
           {"prune", options.strategy.prune.text()},
           {"bisect", solve::to_string(options.bisect)},
           {"lp", prune::lp::to_string(options.strategy.lp)},
+          {"lp_order", prune::lp::to_string(options.strategy.lp_order)},
           {"arith", to_string(options.strategy.arith)},
           {"time_limit", p.time_limit},
           {"cpu_limit", p.cpu_limit},

@@ -5,6 +5,7 @@
 #include "interval/interval.hpp"
 #include "prune/sequence.hpp"
 #include "prune/lp/lp_solver.hpp"
+#include "prune/lp/tighten.hpp"
 #include "solve/strategy.hpp"
 
 #include <memory>
@@ -15,6 +16,7 @@ namespace linkbox::solve {
 struct StrategyOptions {
   Strategy prune = Strategy::automatic();
   prune::lp::LpBackend lp = prune::lp::LpBackend::safe;  // safe | exact (float follows from arith)
+  prune::lp::Order lp_order = prune::lp::Order::nearest_bound;  // the lp contractor's
   Arith arith = Arith::verified;
   double stall = 0.99;  // a stage stalls when it keeps more than this of the volume
 };

@@ -31,12 +31,12 @@ std::unique_ptr<Contractor> make_trapezoid(const StrategyOptions& options, const
 
 std::unique_ptr<Contractor> make_lp(const StrategyOptions& options, const formulate::SubProblem& sub) {
   const auto backend = options.arith != Arith::verified ? prune::lp::LpBackend::float_trusted : options.lp;
-  if (sub.lph) return std::make_unique<prune::LpRelaxation>(*sub.lph, backend);
+  if (sub.lph) return std::make_unique<prune::LpRelaxation>(*sub.lph, backend, options.lp_order);
   // Any polynomial system, lifted to L/P/H form around the search's own variables. Links
   // (y = f(a)) are left out: a relaxation of fewer constraints holds every root still, and
   // the Links contractor that runs first with it (make_pruning) prunes by them.
   model::LphSystem lph = formulate::to_lph(sub.system);
-  auto inner = std::make_unique<prune::LpRelaxation>(lph, backend);
+  auto inner = std::make_unique<prune::LpRelaxation>(lph, backend, options.lp_order);
   return std::make_unique<prune::Lifted>(std::move(lph), sub.system.variables.size(), std::move(inner));
 }
 

@@ -2,7 +2,7 @@
 """The soundness oracle of the safe LP backend on the full set (issue 13).
 
 Records every LP relaxation (LINKBOX_LP_RECORD, lib/prune/lp/lp_record.hpp) of complete
-`linkbox solve --prune lp --lp safe` searches on the bundled cases, then re-solves each recorded
+`linkbox solve --prune lp --lp safe --lp-order given` searches on the bundled cases, then re-solves each recorded
 min/max exactly (the hidden test "LP oracle on a record file" of tests/unit/prune/test_lp_oracle.cpp:
 ExactLp, i.e. CLP's basis checked and repaired in rationals, with CGAL's QP solver
 independently on a sample and on every infeasibility claim) and checks that
@@ -51,7 +51,7 @@ def run_case(build, key, every, cgal_every, cgal_cap, tmp):
     if os.path.exists(record):
         os.remove(record)
     env = dict(os.environ, LINKBOX_LP_RECORD=record, LINKBOX_LP_RECORD_EVERY=str(every))
-    cmd = [os.path.join(build, "linkbox"), "solve", os.path.join(ROOT, case_file), "--prune", "lp", "--lp", "safe",
+    cmd = [os.path.join(build, "linkbox"), "solve", os.path.join(ROOT, case_file), "--prune", "lp", "--lp", "safe", "--lp-order", "given",
            "--quiet", "--no-verify", "--json", os.path.join(tmp, key + ".json")] + extra
     p = subprocess.run(cmd, env=env, stdout=subprocess.DEVNULL)
     if p.returncode not in (0, 4, 5):  # exact, unresolved, incomplete: a result was written
@@ -85,7 +85,7 @@ def report(rows, args, started):
     lines = ["# LP oracle: safe bounds against the exact optimum", ""]
     lines.append("`python3 papers/porta-iterated-lp/lp_oracle.py` (%s; %s; CGAL on every "
                  "%s-th bounded solve, at most %s CGAL solves per case, plus every infeasibility claim). Each case "
-                 "runs `linkbox solve --prune lp --lp safe` to completion (the curves at sigma 0.1, the rest at "
+                 "runs `linkbox solve --prune lp --lp safe --lp-order given` to completion (the curves at sigma 0.1, the rest at "
                  "their default), recording every LP relaxation with its successive column bounds; each recorded "
                  "min/max is then solved exactly (ExactLp: CLP's basis checked and repaired in rationals, CGAL's "
                  "QP solver when that fails)." % (started, "every loaded LP recorded" if args.every == 1 else

@@ -11,7 +11,8 @@ equations), sigma, rho, and the processed / empty / solution / split box counts 
 Cases and parameters are the paper's: rigid 6R (sigma = 1e-4), mobile 6R and bicyclohexane
 (sigma = 0.1), all with rho = 0.95, plus cyclohexane (sigma = 0.1, rho = 0.95; not in the
 paper's text, but CuikSuite's reference timing uses it). By default pruning is the paper's:
-the iterated LP relaxation alone (`--prune lp`, safe LP bounds), depth-first, one thread.
+the iterated LP relaxation alone (`--prune lp`, safe LP bounds, each variable's lower then
+upper bound in turn: `--lp-order given`, Algorithm 2's order), depth-first, one thread.
 Several --prune values (e.g. `--prune lp hc4,lp`) give one linkbox row per value; the first
 one's JSON is the one kept for the plots.
 
@@ -98,6 +99,7 @@ def model_size(res):
 def solve_once(binary, case, args, out_json, extra=()):
     """Runs linkbox once; returns (parsed JSON, wall seconds, CPU seconds of the child, error)."""
     cmd = [binary, "solve", os.path.join(ROOT, case["file"]), "--bisect", "widest", "--prune", args.prune, "--lp", args.lp,
+           "--lp-order", "given",
            "--sigma", repr(case["sigma"]), "--rho", repr(case["rho"]), "--quiet", "--json", out_json]
     if args.time_limit > 0:
         cmd += ["--time-limit", repr(float(args.time_limit))]

@@ -6,6 +6,8 @@
 
 namespace linkbox::prune::lp {
 
+std::string to_string(Order order) { return order == Order::given ? "given" : "nearest"; }
+
 namespace {
 
 // Narrows box[var] by a rigorous bound of the LP; false when the bound proves it empty.

@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <span>
+#include <string>
 
 namespace linkbox::prune::lp {
 
@@ -22,6 +23,7 @@ namespace linkbox::prune::lp {
 // starts near its optimum (Gleixner et al.'s greedy order). Either order is sound; they may
 // differ in how much a pass prunes, since each bound feeds the LPs after it.
 enum class Order { given, nearest_bound };
+std::string to_string(Order order);  // "given", "nearest"
 
 // False when the box is proved empty. `stop` (may be null) is asked before each column (each
 // LP in nearest-bound order): every bound so far is proved, so stopping there is sound, only
