@@ -50,6 +50,9 @@ constexpr Function kFunctions[] = {
     {"cosh", rigorous::cosh, true, Lifted::cosh},   {"tanh", rigorous::tanh, true, Lifted::tanh},
 };
 
+// abs, min, max and sign: rewritten through sqrt (Parser::piecewise).
+bool is_piecewise(std::string_view name) { return name == "abs" || name == "min" || name == "max" || name == "sign"; }
+
 const Function* find_function(std::string_view name) {
   for (auto& f : kFunctions)
     if (f.name == name) return &f;
@@ -155,7 +158,27 @@ class Parser {
     const size_t at = pos_++;
     const size_t exponent_at = next_token();
     Nesting guard(*this, at);
-    const Value exponent = unary();  // right-associative; admits "-1" to reject it clearly
+    Value exponent = unary();  // right-associative
+    if (is_negative_constant(exponent)) {
+      // A^-e = 1 / A^e: the reciprocal of the power (an unknown q with q A^e = 1, or cleared).
+      exponent.poly = -exponent.poly;
+      const double e = exponent.constant().lower();
+      const std::string power_text =
+          std::string(trim(text_.substr(base_at, at - base_at))) + (e == 1 ? "" : "^" + shortest(e));
+      const Value p = raise(base, exponent, base_at, at, exponent_at);
+      if (p.has_variable && !applications_) fail("exponent must be a non-negative integer constant", exponent_at);
+      if (p.has_variable && !p.poly.is_constant()) return reciprocal(p, power_text);
+      return divide(Value{Polynomial::constant(Interval(1.0)), false}, p, base_at);
+    }
+    return raise(base, exponent, base_at, at, exponent_at);
+  }
+
+  static bool is_negative_constant(const Value& e) {
+    const Interval x = e.constant();
+    return !e.has_variable && x.lower() == x.upper() && x.upper() < 0;
+  }
+
+  Value raise(Value base, const Value& exponent, size_t base_at, size_t at, size_t exponent_at) {
     if (applications_ && is_half_integer(exponent)) return half_power(base, exponent, base_at, at, exponent_at);
     const int n = integer_exponent(exponent, exponent_at);
     Value r{Polynomial::constant(Interval(1.0)), base.has_variable};
@@ -271,6 +294,10 @@ class Parser {
       if (!called) fail("function '" + name + "' needs a parenthesised argument", start);
       return call(*f, start);
     }
+    if (is_piecewise(name)) {
+      if (!called) fail("function '" + name + "' needs a parenthesised argument", start);
+      return piecewise(name, start);
+    }
     if (is_nan_or_inf_name(name)) fail("'" + name + "' is not allowed: numbers must be finite", start);
     if (called) fail("unknown function '" + name + "'", start);
     if (variables_.empty()) fail("unknown name '" + name + "' (a constant expression has no variables)", start);
@@ -303,6 +330,52 @@ class Parser {
     }
   }
 
+  // abs, min, max and sign, through sqrt: |A| = sqrt(A^2), an unknown r >= 0 with r^2 = A^2,
+  // which is |A| exactly; min and max (A, B) = (A + B -+ |A - B|) / 2; sign(A) = A / |A|, whose
+  // divisor is cleared where |A| may be 0 (A = 0 itself is then left out by a strict
+  // inequality, so a root there is at best unresolved, never a certified wrong one).
+  Value piecewise(const std::string& name, size_t name_at) {
+    const size_t open_at = pos_++;  // at '('
+    Nesting guard(*this, open_at);
+    Value a = expression();
+    const bool two = name == "min" || name == "max";
+    Value b;
+    if (two) {
+      if (peek() != ',') fail("'" + name + "' takes two arguments: " + name + "(a, b)", pos_);
+      ++pos_;
+      b = expression();
+    } else if (peek() == ',') {
+      fail("'" + name + "' takes one argument", pos_);
+    }
+    expect_closing(open_at);
+    const std::string text(text_.substr(name_at, pos_ - name_at));
+    if (name == "abs") return absolute(a, text, name_at);
+    if (name == "sign") return sign_of(a, text, name_at);
+    Value d{a.poly - b.poly, a.has_variable || b.has_variable};
+    const Value m = absolute(d, "|difference| in " + text, name_at);
+    Value r{(a.poly + b.poly + (name == "max" ? m.poly : -m.poly)) * Interval(0.5), d.has_variable};
+    check_finite(r, name_at);
+    return r;
+  }
+
+  Value absolute(const Value& v, const std::string& text, size_t at) {
+    if (!v.has_variable || v.poly.is_constant())
+      return Value{Polynomial::constant(boost::numeric::abs(v.constant())), v.has_variable};
+    if (!applications_)
+      fail("abs, min, max and sign of an expression with variables: functions apply to constants only", at);
+    return application(Lifted::sqrt, multiply(v, v, at).poly, text);
+  }
+
+  Value sign_of(const Value& v, const std::string& text, size_t at) {
+    if (!v.has_variable || v.poly.is_constant()) {
+      const Interval x = v.constant();
+      const auto sign = [](double y) { return y > 0 ? 1.0 : y < 0 ? -1.0 : 0.0; };
+      return Value{Polynomial::constant(Interval(sign(x.lower()), sign(x.upper()))), v.has_variable};
+    }
+    const Value r = absolute(v, "abs" + text.substr(4), at);
+    return multiply(v, reciprocal(r, "abs" + text.substr(4)), at);
+  }
+
   // The variable standing for f(argument): an equal application is reused, so sin(t) written
   // twice is one unknown.
   Value application(Lifted f, const Polynomial& argument, std::string text, bool raised = false) {
@@ -325,7 +398,10 @@ class Parser {
   // c > 0 its first coefficient and every coefficient of B' = B / c exact, the unknown is
   // q = 1/B' (named "c/B"), so 1/(8 (1 + a)) and 1/(1 + a) are one unknown, and 1/B = q / c.
   Value reciprocal(const Value& divisor, size_t divisor_at) {
-    const std::string text(trim(text_.substr(divisor_at, pos_ - divisor_at)));
+    return reciprocal(divisor, std::string(trim(text_.substr(divisor_at, pos_ - divisor_at))));
+  }
+
+  Value reciprocal(const Value& divisor, const std::string& text) {
     const bool bare = std::all_of(text.begin(), text.end(), [](char c) { return is_identifier_char(c); }) ||
                       (text.front() == '(' && text.back() == ')');
     const std::string over = bare ? "/" + text : "/(" + text + ")";
@@ -408,7 +484,7 @@ class Parser {
   int integer_exponent(const Value& e, size_t at) {
     const Interval x = e.constant();
     if (e.has_variable || x.lower() != x.upper() || x.lower() < 0 || std::floor(x.lower()) != x.lower())
-      fail(applications_ ? "exponent must be a non-negative integer or half-integer constant (x^(1/2) is sqrt(x))"
+      fail(applications_ ? "exponent must be an integer or half-integer constant (x^(1/2) is sqrt(x))"
                          : "exponent must be a non-negative integer constant",
            at);
     if (x.lower() > kMaxExponent) fail("exponent is larger than " + std::to_string(kMaxExponent), at);
@@ -492,7 +568,7 @@ bool is_valid_variable_name(std::string_view name) {
   if (name.empty() || !is_identifier_start(name[0])) return false;
   for (char c : name)
     if (!is_identifier_char(c)) return false;
-  return name != "pi" && !find_function(name) && !is_nan_or_inf_name(name);
+  return name != "pi" && !find_function(name) && !is_piecewise(name) && !is_nan_or_inf_name(name);
 }
 
 }  // namespace linkbox::input

@@ -48,13 +48,16 @@ constexpr long kMaxVectorSize = 100000;
 const std::map<std::string, std::string, std::less<>> kFunctions = {
     {"sqrt", "sqrt"}, {"exp", "exp"},   {"ln", "log"},    {"sin", "sin"},   {"cos", "cos"},
     {"tan", "tan"},   {"asin", "asin"}, {"acos", "acos"}, {"atan", "atan"}, {"sinh", "sinh"},
-    {"cosh", "cosh"}, {"tanh", "tanh"},
+    {"cosh", "cosh"}, {"tanh", "tanh"}, {"abs", "abs"},   {"sign", "sign"},
 };
+// Functions of two arguments.
+const std::set<std::string, std::less<>> kBinaryFunctions = {"min", "max"};
 const std::set<std::string, std::less<>> kUnsupportedFunctions = {
-    "max",  "min",  "atan2", "sign",    "abs", "acosh", "asinh", "atanh", "floor",
+    "atan2", "acosh", "asinh", "atanh", "floor",
     "ceil", "integer", "chi", "inf",  "mid",  "sup",   "sum",   "diff",
 };
-const char* const kFunctionList = "sqr, sqrt, exp, ln, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh";
+const char* const kFunctionList =
+    "sqr, sqrt, exp, ln, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, abs, sign, min, max, pow";
 
 // Block keywords are case-insensitive in Minibex ("Variables", "variables", "VARIABLES").
 const std::set<std::string, std::less<>> kKeywords = {
@@ -374,6 +377,14 @@ class Parser {
       t_.fail(tok.line, "infinity ('oo') is not supported: linkbox needs finite numbers and bounded domains");
     if (name == "sqr") return peer::power(argument(tok), peer::number("2", tok.line), tok.line);
     if (auto f = kFunctions.find(name); f != kFunctions.end()) return peer::call(f->second, argument(tok), tok.line);
+    if (kBinaryFunctions.count(name)) {
+      auto [a, b] = two_arguments(tok);
+      return peer::call(name, {a, b}, tok.line);
+    }
+    if (name == "pow") {
+      auto [base, exponent] = two_arguments(tok);
+      return peer::power(base, exponent, tok.line);
+    }
     if (kUnsupportedFunctions.count(name))
       t_.fail(tok.line, "function '" + name + "' is not supported (supported: " + kFunctionList + ")");
     if (kKeywords.count(lower(name))) t_.fail(tok.line, "unexpected '" + name + "' in an expression");
@@ -420,6 +431,15 @@ class Parser {
     if (t_.at_symbol(",")) t_.fail_here("'" + function.text + "' takes one argument");
     t_.expect_symbol(")", "')' closing the argument of '" + function.text + "'");
     return arg;
+  }
+
+  std::pair<NodePtr, NodePtr> two_arguments(const Token& function) {
+    t_.expect_symbol("(", "'(' after '" + function.text + "'");
+    NodePtr a = expression();
+    t_.expect_symbol(",", "',' between the two arguments of '" + function.text + "'");
+    NodePtr b = expression();
+    t_.expect_symbol(")", "')' closing the arguments of '" + function.text + "'");
+    return {a, b};
   }
 
   peer::Tokens t_;

@@ -168,6 +168,9 @@ NodePtr pi(int line) { return make(Node::Kind::Pi, line, "pi", {}); }
 NodePtr call(std::string function, NodePtr arg, int line) {
   return make(Node::Kind::Call, line, std::move(function), {std::move(arg)});
 }
+NodePtr call(std::string function, std::vector<NodePtr> args, int line) {
+  return make(Node::Kind::Call, line, std::move(function), std::move(args));
+}
 NodePtr power(NodePtr base, NodePtr exponent, int line) {
   return make(Node::Kind::Power, line, "", {std::move(base), std::move(exponent)});
 }
@@ -251,7 +254,10 @@ class Writer {
         mark(n.line);
         append(n.text);
         append("(");
-        put(*n.args[0], kAny);
+        for (size_t i = 0; i < n.args.size(); ++i) {
+          if (i > 0) append(", ");
+          put(*n.args[i], kAny);
+        }
         append(")");
         break;
       case Node::Kind::Power:

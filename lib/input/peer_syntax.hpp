@@ -93,7 +93,7 @@ struct Node {
     Number,    // text: the literal as written (a decimal, never rounded)
     Variable,  // text: linkbox's name of the variable
     Pi,
-    Call,      // text: linkbox's function name; args[0]
+    Call,      // text: linkbox's function name; args[0] (and args[1] for min and max)
     Power,     // args[0] ^ args[1]
     Negate,    // -args[0]
     Sum,       // args[0] (+|-) args[1] ...; ops[i] is the sign before args[i] ('+' for i = 0)
@@ -112,6 +112,7 @@ NodePtr number(std::string text, int line);
 NodePtr variable(std::string name, int line);
 NodePtr pi(int line);
 NodePtr call(std::string function, NodePtr arg, int line);
+NodePtr call(std::string function, std::vector<NodePtr> args, int line);  // min(a, b), max(a, b)
 NodePtr power(NodePtr base, NodePtr exponent, int line);
 NodePtr negate(NodePtr x, int line);
 NodePtr constant_use(NodePtr value, int line);

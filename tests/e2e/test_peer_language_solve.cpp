@@ -2,6 +2,7 @@
 // and inequalities give the roots their TOML twin gives, and interval constants give roots
 // certified for every value of the constants (planted families whose roots are known in
 // closed form for each value), never a count where the family's count changes.
+#include "input/input_error.hpp"
 #include "input/to_toml.hpp"
 #include "tests/cli_run.hpp"
 #include "tests/solved_case.hpp"
@@ -60,6 +61,30 @@ end
   CHECK(one.v.exact);
   CHECK(one.roots.size() == 1);
   CHECK(one.v.headline.find("where the inequalities hold") != std::string::npos);
+}
+
+TEST_CASE("peer language: abs, min, max, sign and pow read as IbexSolve reads them", "[peer][functions]") {
+  // Where x >= y, the first gives y = 1 - x, and then the second 1/x - x = 1/0.7 - 0.7: x = 0.7.
+  // Where y > x, y = 1/2 and 1/x + x = 1/0.7 - 0.7 has no root. So (0.7, 0.3) alone.
+  const std::string bch = R"~(Variables
+  x in [0.1, 3];
+  y in [0.05, 1];
+Constraints
+  max(x, y) + abs(y) = 1;
+  pow(x, -1) + min(x, y) - sign(y) = 1/0.7 + 0.3 - 1;
+end
+)~";
+  const test::SolvedCase peer = solve_peer(bch, "piecewise.bch", 1e-6);
+  CHECK(peer.v.exact);
+  REQUIRE(peer.roots.size() == 1);
+  CHECK(holding(peer.roots, {0.7, 0.3}) == 1);
+  bool refused = false;
+  try {
+    formulate::load_case_text("Variables\n x in [0, 1];\nConstraints\n max(x) = 1;\nend\n", "one.bch");
+  } catch (const input::InputError& e) {
+    refused = e.line == 4 && std::string(e.message).find("max") != std::string::npos;
+  }
+  CHECK(refused);
 }
 
 TEST_CASE("interval constants: planted families keep their roots for every value", "[peer][interval-constants]") {
