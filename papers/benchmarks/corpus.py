@@ -54,6 +54,11 @@ EDGE = ("finished in 7.4-7.6 CPU s in the 2026-11-26 run; on 2026-11-28, with ot
 NOTES["polynom/BroydenTri-0090.bch"] = "linkbox " + EDGE
 NOTES["polynom/Redeco9.bch"] = "linkbox " + EDGE
 NOTES["non-polynom/trigonometric-05.bch"] = NOTES["non-polynom/Trigonometric-05.bch"]
+NOTES["non-polynom/SjirkBoon.bch"] = (
+    "linkbox finished in 6.1-6.5 CPU s in the 2026-11-29 07:10 run (race won by hc4,newton); since the "
+    "lp contractor's nearest-bound order its LPs are cheaper and the race hands the lead to "
+    "hc4,newton/lp at its second choice, on tree shares below 0.001 (8.8 s alone, against 4.8 s for "
+    "hc4,newton alone): a misjudgement of the race (papers/decisions/solve-driver.md).")
 
 
 def cpu_limited(linkbox, logs):
