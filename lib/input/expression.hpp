@@ -12,14 +12,16 @@
 //   primary := number | 'pi' | variable | function '(' expr ')' | '(' expr ')'
 //            | '[' expr ',' expr ']'       an interval constant, where `intervals` is given
 //   number  := digits ['.' digits] | '.' digits, then optionally [eE][+-]digits
-//   function: sin cos tan asin acos atan sqrt exp log sinh cosh tanh, of constant arguments only.
+//   function: sin cos tan asin acos atan sqrt exp log sinh cosh tanh abs sign, and min and max
+//   of two arguments ('(' expr ',' expr ')'), of constant arguments only.
 // Exponents are exact non-negative integers (at most kMaxExponent); divisors are constant
 // expressions whose interval excludes 0.
 //
 // parse_with_functions also admits every function of expressions with variables, exponents
-// k + 1/2 (x^(1/2) is sqrt(x)) and divisors with variables (A/B is A * (1/B)); they are kept
-// as model::Application for model::lift, which turns them into new unknowns with polynomial
-// equations or links (model/lifting.hpp).
+// k + 1/2 (x^(1/2) is sqrt(x)), negative ones (A^-e is 1/A^e) and divisors with variables
+// (A/B is A * (1/B)); abs(A) is sqrt(A^2), min and max (A + B -+ |A - B|) / 2, sign(A) A/|A|.
+// They are kept as model::Application for model::lift, which turns them into new unknowns
+// with polynomial equations or links (model/lifting.hpp).
 //
 // An interval constant [a, b] (constant ends, a <= b) is the interval from the lower end of
 // a's enclosure to the upper end of b's: each use is one interval coefficient, standing for
