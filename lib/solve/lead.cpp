@@ -41,6 +41,7 @@ size_t choose_lead(size_t held, const std::vector<Standing>& now, const Progress
   for (size_t k = 0; k < now.size(); ++k) {
     // No work counted (its first box capped, race.cpp): it has shown nothing yet.
     if (k == held || now[k].work <= 0) continue;
+    if (std::max(now[k].tree, now[held].tree) < kMinLeadShare) continue;
     const double ahead = ahead_of(held_progress, now[k]);
     if (ahead >= 0 && cheaper(now[held], now[k]) && ahead > best) {
       best = ahead;

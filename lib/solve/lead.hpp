@@ -3,7 +3,9 @@
 // projected total work is its work over the share of the search tree it has resolved. The
 // lead passes from its holder only to a challenger projected kLeadMargin times cheaper and at
 // least as far along the tree as the holder was after the same work; of several, to the one
-// furthest ahead.
+// furthest ahead. While neither has resolved kMinLeadShare of the tree, it stays: there a
+// depth-first search's share is a few of its first, smallest subtrees, and any projection
+// from it is noise.
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -14,6 +16,7 @@ namespace linkbox::solve {
 // box) and any candidate while the part of the tree left is the hard part, so a projection's
 // noise must not hand the lead back and forth (each change wastes the turns before).
 constexpr double kLeadMargin = 2;
+constexpr double kMinLeadShare = 0.01;
 
 // A candidate's work so far and the share of the search tree it has resolved.
 struct Standing {

@@ -58,7 +58,8 @@ NOTES["non-polynom/SjirkBoon.bch"] = (
     "linkbox finished in 6.1-6.5 CPU s in the 2026-11-29 07:10 run (race won by hc4,newton); since the "
     "lp contractor's nearest-bound order its LPs are cheaper and the race hands the lead to "
     "hc4,newton/lp at its second choice, on tree shares below 0.001 (8.8 s alone, against 4.8 s for "
-    "hc4,newton alone): a misjudgement of the race (papers/decisions/solve-driver.md).")
+    "hc4,newton alone): a misjudgement of the race, after this run mended by a minimum tree share "
+    "before the lead changes hands (auto 6.5 s; papers/decisions/solve-driver.md).")
 
 
 def cpu_limited(linkbox, logs):

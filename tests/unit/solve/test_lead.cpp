@@ -44,3 +44,17 @@ TEST_CASE("a candidate with no work counted never takes the lead", "[race]") {
   CHECK(choose_lead(0, {{500, 0.0}, {0, 0.0}}, holder) == 0);
   CHECK(choose_lead(0, {{500, 0.0}, {0, 0.0}, {600, 0.5}}, holder) == 2);
 }
+
+TEST_CASE("below a hundredth of the tree on both sides, the lead stays", "[race]") {
+  // SjirkBoon's second choice: the challenger is ahead at equal work and projected 2.8 times
+  // cheaper, on shares below 0.001 (papers/decisions/solve-driver.md).
+  const Progress holder{{500, 0.000244}, {8500, 0.000901}};
+  const Standing held{8500, 0.000901};
+  const Standing challenger{1660, 0.000494};
+  CHECK(ahead_of(holder, challenger) > 0);
+  CHECK(cheaper(held, challenger));
+  CHECK(choose_lead(0, {held, challenger}, holder) == 0);
+  // The same standings scaled up past the threshold: it takes the lead.
+  const Progress scaled{{500, 0.0244}, {8500, 0.0901}};
+  CHECK(choose_lead(0, {{8500, 0.0901}, {1660, 0.0494}}, scaled) == 1);
+}
