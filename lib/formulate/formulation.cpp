@@ -5,19 +5,25 @@
 namespace linkbox::formulate {
 
 // With links, the unknowns that stand for functions of the declared variables (a link's y
-// and argument, a quotient, a square root) are not split: propagation narrows them from the
-// declared ones, and splitting them too multiplies the boxes (a link's y often spans many
-// orders of magnitude). Without links every unknown is split, except a power's base (a sum
-// of split unknowns, so splitting it would only split them again, along a diagonal).
+// and argument, a quotient, a square root, cos and sin of an atan2) are not split: propagation
+// narrows them from the declared ones, and splitting them too multiplies the boxes (a link's
+// y often spans many orders of magnitude). Without links every unknown is split, except a
+// power's base (a sum of split unknowns, so splitting it would only split them again, along a
+// diagonal). An atan2's own unknown is split: its links to cos and sin give propagation
+// nothing to narrow it by, and unsplit it spans both angles that a direction (c, s) and its
+// opposite give, over boxes along a whole curve of X s = Y c.
 SubProblem PolynomialFormulation::subproblem(size_t) const {
   SubProblem s{"all", system_, {}, nullptr, nullptr, false};
   using Kind = model::Lifting::Source::Kind;
+  using Function = model::Application::Function;
   for (size_t i = 0; i < system_.variables.size(); ++i) {
     const auto& source = system_.lifting ? system_.lifting->sources[i] : model::Lifting::Source{Kind::declared, 0};
-    const bool base = source.kind == Kind::application &&
-                      system_.lifting->applications[source.index].function == model::Application::Function::base;
-    const bool dependent = base || (!system_.links.empty() && (source.kind == Kind::application ||
-                                                               source.kind == Kind::argument));
+    const auto function = [&] { return system_.lifting->applications[source.index].function; };
+    const bool base = source.kind == Kind::application && function() == Function::base;
+    const bool angle = source.kind == Kind::application && function() == Function::atan2;
+    const bool of_declared = source.kind == Kind::application || source.kind == Kind::argument ||
+                             source.kind == Kind::angle_cos || source.kind == Kind::angle_sin;
+    const bool dependent = !angle && (base || (!system_.links.empty() && of_declared));
     if (!dependent) s.split_dims.push_back(static_cast<int>(i));
   }
   return s;

@@ -1,475 +1,303 @@
-#include "input/expression.hpp"
+// The grammar of input/expression.hpp: sums, products, powers, numbers, names and interval
+// constants (the parser's functions are in expression_functions.cpp).
+#include "input/expression_parser.hpp"
 
-#include "input/expression_vocabulary.hpp"
 #include "interval/rigorous.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <utility>
 
 namespace linkbox::input {
 
-namespace {
+namespace detail {
 
-using model::Polynomial;
 using namespace expression_vocabulary;
 
-// Guards against inputs that would exhaust the stack or the memory instead of failing.
-constexpr int kMaxNesting = 200;
-constexpr size_t kMaxTermProducts = 1'000'000;
-
-// A parsed sub-expression. `has_variable` is syntactic: "x - x" folds to 0 but still counts
-// as a function of x, so sin(x - x) is rejected like sin(x).
-struct Value {
-  Value() = default;
-  Value(Polynomial p, bool variable) : poly(std::move(p)), has_variable(variable) {}
-  Polynomial poly;
-  bool has_variable = false;
-  std::string group;  // a parenthesised sum over two or more variables, as written (Powers)
-  Interval constant() const { return poly.constant_term(); }
-};
-
-class Parser {
- public:
-  // `applications`: where functions of variables go; `intervals`: where the genuine interval
-  // constants are listed (null: either is an error).
-  Parser(std::string_view text, const std::vector<std::string>& variables,
-         std::vector<model::Application>* applications = nullptr, IntervalConstants* intervals = nullptr,
-         Powers powers = Powers::expanded)
-      : text_(text), variables_(variables), applications_(applications), intervals_(intervals), powers_(powers) {}
-
-  Value parse() {
-    if (next_token() == text_.size()) fail("empty expression", 0);
-    Value v = expression();
-    if (pos_ != text_.size()) unexpected("an operator or the end of the expression");
-    return v;
-  }
-
- private:
-  Value expression() {
-    Value v = term();
-    for (char op = peek(); op == '+' || op == '-'; op = peek()) {
-      v.group.clear();
-      const size_t at = pos_++;
-      Value rhs = term();
-      if (op == '+')
-        v.poly += rhs.poly;
-      else
-        v.poly -= rhs.poly;
-      v.has_variable |= rhs.has_variable;
-      check_finite(v, at);
-    }
-    return v;
-  }
-
-  Value term() {
-    Value v = unary();
-    for (char op = peek(); op == '*' || op == '/'; op = peek()) {
-      const size_t at = pos_++;
-      const size_t rhs_at = next_token();
-      Value rhs = unary();
-      if (op == '*' && v.has_variable && rhs.has_variable)
-        v = multiply(as_written(v, false), as_written(rhs, false), at);
-      else if (op == '*')
-        v = multiply(v, rhs, at);
-      else if (rhs.has_variable && applications_ && !rhs.poly.is_constant())
-        v = multiply(v, reciprocal(rhs, rhs_at), at);
-      else
-        v = divide(v, rhs, rhs_at);
-      check_finite(v, at);
-    }
-    return v;
-  }
-
-  Value unary() {
-    const char c = peek();
-    if (c != '-' && c != '+') return power();
-    const size_t at = pos_++;
-    Nesting guard(*this, at);
-    Value v = unary();
+Value Parser::expression() {
+  Value v = term();
+  for (char op = peek(); op == '+' || op == '-'; op = peek()) {
     v.group.clear();
-    if (c == '-') v.poly = -v.poly;
+    const size_t at = pos_++;
+    Value rhs = term();
+    if (op == '+')
+      v.poly += rhs.poly;
+    else
+      v.poly -= rhs.poly;
+    v.has_variable |= rhs.has_variable;
+    check_finite(v, at);
+  }
+  return v;
+}
+
+Value Parser::term() {
+  Value v = unary();
+  for (char op = peek(); op == '*' || op == '/'; op = peek()) {
+    const size_t at = pos_++;
+    const size_t rhs_at = next_token();
+    Value rhs = unary();
+    if (op == '*' && v.has_variable && rhs.has_variable)
+      v = multiply(as_written(v, false), as_written(rhs, false), at);
+    else if (op == '*')
+      v = multiply(v, rhs, at);
+    else if (rhs.has_variable && applications_ && !rhs.poly.is_constant())
+      v = multiply(v, reciprocal(rhs, rhs_at), at);
+    else
+      v = divide(v, rhs, rhs_at);
+    check_finite(v, at);
+  }
+  return v;
+}
+
+Value Parser::unary() {
+  const char c = peek();
+  if (c != '-' && c != '+') return power();
+  const size_t at = pos_++;
+  Nesting guard(*this, at);
+  Value v = unary();
+  v.group.clear();
+  if (c == '-') v.poly = -v.poly;
+  return v;
+}
+
+Value Parser::power() {
+  const size_t base_at = next_token();
+  Value base = primary();
+  if (peek() != '^') return base;
+  const size_t at = pos_++;
+  const size_t exponent_at = next_token();
+  Nesting guard(*this, at);
+  Value exponent = unary();  // right-associative
+  if (is_negative_constant(exponent)) {
+    // A^-e = 1 / A^e: the reciprocal of the power (an unknown q with q A^e = 1, or cleared).
+    exponent.poly = -exponent.poly;
+    const double e = exponent.constant().lower();
+    const std::string power_text =
+        std::string(trim(text_.substr(base_at, at - base_at))) + (e == 1 ? "" : "^" + shortest(e));
+    const Value p = raise(base, exponent, base_at, at, exponent_at);
+    if (p.has_variable && !applications_) fail("exponent must be a non-negative integer constant", exponent_at);
+    if (p.has_variable && !p.poly.is_constant()) return reciprocal(p, power_text);
+    return divide(Value{Polynomial::constant(Interval(1.0)), false}, p, base_at);
+  }
+  return raise(base, exponent, base_at, at, exponent_at);
+}
+
+bool Parser::is_negative_constant(const Value& e) {
+  const Interval x = e.constant();
+  return !e.has_variable && x.lower() == x.upper() && x.upper() < 0;
+}
+
+Value Parser::raise(Value base, const Value& exponent, size_t base_at, size_t at, size_t exponent_at) {
+  if (applications_ && is_half_integer(exponent)) return half_power(base, exponent, base_at, at, exponent_at);
+  const int n = integer_exponent(exponent, exponent_at);
+  Value r{Polynomial::constant(Interval(1.0)), base.has_variable};
+  if (n == 0) return r;  // x^0 = 1, also for 0^0 (Boost's pow would return empty)
+  if (n >= 2) base = as_written(base, true);
+  if (!base.has_variable) {
+    r.poly = Polynomial::constant(boost::numeric::pow(base.constant(), n));
+  } else {
+    for (int k = n; k > 0; k >>= 1) {  // square-and-multiply, guarded against blow-up
+      if (k & 1) r = multiply(r, base, at);
+      if (k > 1) base = multiply(base, base, at);
+    }
+  }
+  check_finite(r, at);
+  return r;
+}
+
+Value Parser::primary() {
+  const char c = peek();
+  const size_t at = pos_;
+  if (pos_ == text_.size()) fail("expression ends where a number, variable or '(' was expected", at);
+  if (is_digit(c) || (c == '.' && pos_ + 1 < text_.size() && is_digit(text_[pos_ + 1]))) return number();
+  if (is_identifier_start(c)) return identifier();
+  if (c == '(') {
+    ++pos_;
+    Nesting guard(*this, at);
+    Value v = expression();
+    expect_closing(at);
+    const bool kept = powers_ == Powers::as_written && applications_ && is_sum(v.poly);
+    v.group = kept ? std::string(text_.substr(at, pos_ - at)) : std::string();
     return v;
   }
+  if (c == '[') return interval_constant();
+  if (c == ')') fail("')' where a number, variable or '(' was expected", at);
+  unexpected("a number, variable or '('");
+}
 
-  Value power() {
-    const size_t base_at = next_token();
-    Value base = primary();
-    if (peek() != '^') return base;
-    const size_t at = pos_++;
-    const size_t exponent_at = next_token();
-    Nesting guard(*this, at);
-    Value exponent = unary();  // right-associative
-    if (is_negative_constant(exponent)) {
-      // A^-e = 1 / A^e: the reciprocal of the power (an unknown q with q A^e = 1, or cleared).
-      exponent.poly = -exponent.poly;
-      const double e = exponent.constant().lower();
-      const std::string power_text =
-          std::string(trim(text_.substr(base_at, at - base_at))) + (e == 1 ? "" : "^" + shortest(e));
-      const Value p = raise(base, exponent, base_at, at, exponent_at);
-      if (p.has_variable && !applications_) fail("exponent must be a non-negative integer constant", exponent_at);
-      if (p.has_variable && !p.poly.is_constant()) return reciprocal(p, power_text);
-      return divide(Value{Polynomial::constant(Interval(1.0)), false}, p, base_at);
-    }
-    return raise(base, exponent, base_at, at, exponent_at);
+// "[a, b]": the interval from the lower end of a's enclosure to the upper end of b's. Its
+// text is listed in intervals_ unless it is a point (the same text twice, or one double).
+Value Parser::interval_constant() {
+  const size_t open_at = pos_++;
+  Nesting guard(*this, open_at);
+  if (!intervals_)
+    fail("an interval constant ('[a, b]') is allowed only in equations and inequalities", open_at);
+  const size_t lower_at = next_token();
+  const Value lower = expression();
+  const size_t comma_at = pos_;
+  if (peek() != ',') unexpected("',' between the ends of the interval opened at column " + std::to_string(open_at));
+  ++pos_;
+  const size_t upper_at = next_token();
+  const Value upper = expression();
+  const size_t close_at = pos_;
+  if (peek() != ']') {
+    if (pos_ == text_.size()) fail("missing ']' for the '[' at column " + std::to_string(open_at), pos_);
+    unexpected("']' (closing the '[' at column " + std::to_string(open_at) + ")");
   }
+  ++pos_;
+  if (lower.has_variable || upper.has_variable)
+    fail("the ends of an interval constant must be constant expressions", open_at);
+  const Interval a = lower.constant(), b = upper.constant();
+  if (a.lower() > b.upper()) fail("empty interval constant: its lower end exceeds its upper end", open_at);
+  const bool point = trim(text_.substr(lower_at, comma_at - lower_at)) ==
+                         trim(text_.substr(upper_at, close_at - upper_at)) ||
+                     (a.lower() == a.upper() && b.lower() == b.upper() && a.lower() == b.lower());
+  const std::string text(text_.substr(open_at, pos_ - open_at));
+  if (!point && std::find(intervals_->begin(), intervals_->end(), text) == intervals_->end())
+    intervals_->push_back(text);
+  return Value{Polynomial::constant(Interval(a.lower(), b.upper())), false};
+}
 
-  static bool is_negative_constant(const Value& e) {
-    const Interval x = e.constant();
-    return !e.has_variable && x.lower() == x.upper() && x.upper() < 0;
-  }
-
-  Value raise(Value base, const Value& exponent, size_t base_at, size_t at, size_t exponent_at) {
-    if (applications_ && is_half_integer(exponent)) return half_power(base, exponent, base_at, at, exponent_at);
-    const int n = integer_exponent(exponent, exponent_at);
-    Value r{Polynomial::constant(Interval(1.0)), base.has_variable};
-    if (n == 0) return r;  // x^0 = 1, also for 0^0 (Boost's pow would return empty)
-    if (n >= 2) base = as_written(base, true);
-    if (!base.has_variable) {
-      r.poly = Polynomial::constant(boost::numeric::pow(base.constant(), n));
-    } else {
-      for (int k = n; k > 0; k >>= 1) {  // square-and-multiply, guarded against blow-up
-        if (k & 1) r = multiply(r, base, at);
-        if (k > 1) base = multiply(base, base, at);
-      }
-    }
-    check_finite(r, at);
-    return r;
-  }
-
-  Value primary() {
-    const char c = peek();
-    const size_t at = pos_;
-    if (pos_ == text_.size()) fail("expression ends where a number, variable or '(' was expected", at);
-    if (is_digit(c) || (c == '.' && pos_ + 1 < text_.size() && is_digit(text_[pos_ + 1]))) return number();
-    if (is_identifier_start(c)) return identifier();
-    if (c == '(') {
-      ++pos_;
-      Nesting guard(*this, at);
-      Value v = expression();
-      expect_closing(at);
-      const bool kept = powers_ == Powers::as_written && applications_ && is_sum(v.poly);
-      v.group = kept ? std::string(text_.substr(at, pos_ - at)) : std::string();
-      return v;
-    }
-    if (c == '[') return interval_constant();
-    if (c == ')') fail("')' where a number, variable or '(' was expected", at);
-    unexpected("a number, variable or '('");
-  }
-
-  // "[a, b]": the interval from the lower end of a's enclosure to the upper end of b's. Its
-  // text is listed in intervals_ unless it is a point (the same text twice, or one double).
-  Value interval_constant() {
-    const size_t open_at = pos_++;
-    Nesting guard(*this, open_at);
-    if (!intervals_)
-      fail("an interval constant ('[a, b]') is allowed only in equations and inequalities", open_at);
-    const size_t lower_at = next_token();
-    const Value lower = expression();
-    const size_t comma_at = pos_;
-    if (peek() != ',') unexpected("',' between the ends of the interval opened at column " + std::to_string(open_at));
-    ++pos_;
-    const size_t upper_at = next_token();
-    const Value upper = expression();
-    const size_t close_at = pos_;
-    if (peek() != ']') {
-      if (pos_ == text_.size()) fail("missing ']' for the '[' at column " + std::to_string(open_at), pos_);
-      unexpected("']' (closing the '[' at column " + std::to_string(open_at) + ")");
-    }
-    ++pos_;
-    if (lower.has_variable || upper.has_variable)
-      fail("the ends of an interval constant must be constant expressions", open_at);
-    const Interval a = lower.constant(), b = upper.constant();
-    if (a.lower() > b.upper()) fail("empty interval constant: its lower end exceeds its upper end", open_at);
-    const bool point = trim(text_.substr(lower_at, comma_at - lower_at)) ==
-                           trim(text_.substr(upper_at, close_at - upper_at)) ||
-                       (a.lower() == a.upper() && b.lower() == b.upper() && a.lower() == b.lower());
-    const std::string text(text_.substr(open_at, pos_ - open_at));
-    if (!point && std::find(intervals_->begin(), intervals_->end(), text) == intervals_->end())
-      intervals_->push_back(text);
-    return Value{Polynomial::constant(Interval(a.lower(), b.upper())), false};
-  }
-
-  Value number() {
-    const size_t start = pos_;
-    auto digits = [&] {
-      size_t n = 0;
-      for (; pos_ < text_.size() && is_digit(text_[pos_]); ++pos_) ++n;
-      return n;
-    };
-    size_t mantissa_digits = digits();
-    if (pos_ < text_.size() && text_[pos_] == '.') {
-      ++pos_;
-      mantissa_digits += digits();
-    }
-    if (mantissa_digits == 0) fail("malformed number", start);
-    if (pos_ < text_.size() && (text_[pos_] == 'e' || text_[pos_] == 'E')) {
-      ++pos_;
-      if (pos_ < text_.size() && (text_[pos_] == '+' || text_[pos_] == '-')) ++pos_;
-      if (digits() == 0) fail("malformed number: exponent has no digits", start);
-    }
-    const std::string_view literal = text_.substr(start, pos_ - start);
-    if (pos_ < text_.size() && is_identifier_char(text_[pos_]))
-      fail("missing operator between the number " + std::string(literal) + " and " + describe(text_[pos_]) +
-               " (write 2*x, not 2x)",
-           pos_);
-    Interval x;
-    try {
-      x = rigorous::decimal(literal);
-    } catch (const std::invalid_argument&) {
-      fail("malformed number '" + std::string(literal) + "'", start);
-    }
-    if (!is_finite(x)) fail("number " + std::string(literal) + " is outside the range of a double", start);
-    return Value{Polynomial::constant(x), false};
-  }
-
-  Value identifier() {
-    const size_t start = pos_;
-    while (pos_ < text_.size() && is_identifier_char(text_[pos_])) ++pos_;
-    const std::string name(text_.substr(start, pos_ - start));
-    for (size_t i = 0; i < variables_.size(); ++i)
-      if (variables_[i] == name) return Value{Polynomial::variable(static_cast<int>(i)), true};
-    if (name == "pi") return Value{Polynomial::constant(rigorous::pi()), false};
-    const bool called = peek() == '(';
-    if (const Function* f = find_function(name)) {
-      if (!called) fail("function '" + name + "' needs a parenthesised argument", start);
-      return call(*f, start);
-    }
-    if (is_piecewise(name)) {
-      if (!called) fail("function '" + name + "' needs a parenthesised argument", start);
-      return piecewise(name, start);
-    }
-    if (is_nan_or_inf_name(name)) fail("'" + name + "' is not allowed: numbers must be finite", start);
-    if (called) fail("unknown function '" + name + "'", start);
-    if (variables_.empty()) fail("unknown name '" + name + "' (a constant expression has no variables)", start);
-    fail("unknown variable '" + name + "'", start);
-  }
-
-  Value call(const Function& f, size_t name_at) {
-    const size_t open_at = pos_++;  // at '('
-    Nesting guard(*this, open_at);
-    const Value arg = expression();
-    expect_closing(open_at);
-    if (arg.has_variable && applications_) {
-      if (!f.liftable)
-        fail(std::string(f.name) + " of an expression with variables: functions apply to constants only", name_at);
-      if (!arg.poly.is_constant())
-        return application(f.lifted, arg.poly, std::string(text_.substr(name_at, pos_ - name_at)));
-      // Folded to a constant (sin(x - x)): evaluated as one below.
-    } else if (arg.has_variable) {
-      fail(std::string(f.name) + " of an expression with variables: functions apply to constants only",
-           name_at);
-    }
-    try {
-      Value r{Polynomial::constant(f.apply(arg.constant())), false};
-      check_finite(r, name_at);
-      return r;
-    } catch (const std::domain_error& e) {
-      const std::string why = e.what();
-      const std::string prefix = std::string(f.name) + ":";
-      fail(why.rfind(prefix, 0) == 0 ? why : prefix + " " + why, name_at);
-    }
-  }
-
-  // abs, min, max and sign, through sqrt: |A| = sqrt(A^2), an unknown r >= 0 with r^2 = A^2,
-  // which is |A| exactly; min and max (A, B) = (A + B -+ |A - B|) / 2; sign(A) = A / |A|, whose
-  // divisor is cleared where |A| may be 0 (A = 0 itself is then left out by a strict
-  // inequality, so a root there is at best unresolved, never a certified wrong one).
-  Value piecewise(const std::string& name, size_t name_at) {
-    const size_t open_at = pos_++;  // at '('
-    Nesting guard(*this, open_at);
-    Value a = expression();
-    const bool two = name == "min" || name == "max";
-    Value b;
-    if (two) {
-      if (peek() != ',') fail("'" + name + "' takes two arguments: " + name + "(a, b)", pos_);
-      ++pos_;
-      b = expression();
-    } else if (peek() == ',') {
-      fail("'" + name + "' takes one argument", pos_);
-    }
-    expect_closing(open_at);
-    const std::string text(text_.substr(name_at, pos_ - name_at));
-    if (name == "abs") return absolute(a, text, name_at);
-    if (name == "sign") return sign_of(a, text, name_at);
-    Value d{a.poly - b.poly, a.has_variable || b.has_variable};
-    const Value m = absolute(d, "|difference| in " + text, name_at);
-    Value r{(a.poly + b.poly + (name == "max" ? m.poly : -m.poly)) * Interval(0.5), d.has_variable};
-    check_finite(r, name_at);
-    return r;
-  }
-
-  Value absolute(const Value& v, const std::string& text, size_t at) {
-    if (!v.has_variable || v.poly.is_constant())
-      return Value{Polynomial::constant(boost::numeric::abs(v.constant())), v.has_variable};
-    if (!applications_)
-      fail("abs, min, max and sign of an expression with variables: functions apply to constants only", at);
-    return application(Lifted::sqrt, multiply(v, v, at).poly, text);
-  }
-
-  Value sign_of(const Value& v, const std::string& text, size_t at) {
-    if (!v.has_variable || v.poly.is_constant()) {
-      const Interval x = v.constant();
-      const auto sign = [](double y) { return y > 0 ? 1.0 : y < 0 ? -1.0 : 0.0; };
-      return Value{Polynomial::constant(Interval(sign(x.lower()), sign(x.upper()))), v.has_variable};
-    }
-    const Value r = absolute(v, "abs" + text.substr(4), at);
-    return multiply(v, reciprocal(r, "abs" + text.substr(4)), at);
-  }
-
-  // The variable standing for f(argument): an equal application is reused, so sin(t) written
-  // twice is one unknown.
-  Value application(Lifted f, const Polynomial& argument, std::string text, bool raised = false) {
-    auto& apps = *applications_;
-    size_t k = 0;
-    while (k < apps.size() && !(apps[k].function == f && model::same(apps[k].argument, argument))) ++k;
-    if (k == apps.size()) apps.push_back({f, argument, std::move(text)});
-    apps[k].raised = apps[k].raised || raised;
-    return Value{Polynomial::variable(static_cast<int>(variables_.size() + k)), true};
-  }
-
-  // A parenthesised sum (its group set under Powers::as_written) that is raised to a power or
-  // multiplied by an expression with variables, as an application (expression.hpp says why);
-  // model::lift expands one that is never raised.
-  Value as_written(const Value& v, bool raised) {
-    return v.group.empty() ? v : application(Lifted::base, v.poly, v.group, raised);
-  }
-
-  // 1/B for a divisor with variables, as the application its text names. When B = c B',
-  // c > 0 its first coefficient and every coefficient of B' = B / c exact, the unknown is
-  // q = 1/B' (named "c/B"), so 1/(8 (1 + a)) and 1/(1 + a) are one unknown, and 1/B = q / c.
-  Value reciprocal(const Value& divisor, size_t divisor_at) {
-    return reciprocal(divisor, std::string(trim(text_.substr(divisor_at, pos_ - divisor_at))));
-  }
-
-  Value reciprocal(const Value& divisor, const std::string& text) {
-    const bool bare = std::all_of(text.begin(), text.end(), [](char c) { return is_identifier_char(c); }) ||
-                      (text.front() == '(' && text.back() == ')');
-    const std::string over = bare ? "/" + text : "/(" + text + ")";
-    Polynomial normal;
-    const double c = exact_scale(divisor.poly, normal);
-    if (c == 1) return application(Lifted::reciprocal, divisor.poly, "1" + over);
-    const Value q = application(Lifted::reciprocal, normal, shortest(c) + over);
-    return Value{q.poly * (Interval(1.0) / Interval(c)), true};
-  }
-
-  static bool is_half_integer(const Value& e) {
-    const Interval x = e.constant();
-    if (e.has_variable || x.lower() != x.upper() || x.lower() < 0) return false;
-    const double twice = 2 * x.lower();  // exact: a double times 2
-    return std::floor(twice) == twice && std::floor(x.lower()) != x.lower();
-  }
-
-  // base^(n + 1/2) = base^n * sqrt(base): a constant, or an application of sqrt.
-  Value half_power(const Value& base, const Value& exponent, size_t base_at, size_t at, size_t exponent_at) {
-    const double e = exponent.constant().lower();
-    if (e > kMaxExponent) fail("exponent is larger than " + std::to_string(kMaxExponent), exponent_at);
-    const int n = static_cast<int>(std::floor(e));
-    Value root;
-    if (!base.has_variable) {
-      try {
-        root = Value{Polynomial::constant(rigorous::sqrt(base.constant())), false};
-      } catch (const std::domain_error&) {
-        fail("half-integer power of a negative number", at);
-      }
-    } else {
-      root = application(Lifted::sqrt, base.poly,
-                         "sqrt(" + std::string(trim(text_.substr(base_at, at - base_at))) + ")");
-    }
-    Value r = root;
-    Value b = base;
-    for (int k = n; k > 0; k >>= 1) {
-      if (k & 1) r = multiply(r, b, at);
-      if (k > 1) b = multiply(b, b, at);
-    }
-    check_finite(r, at);
-    return r;
-  }
-
-  Value multiply(const Value& a, const Value& b, size_t at) {
-    if (a.poly.terms().size() * b.poly.terms().size() > kMaxTermProducts)
-      fail("expression expands to too many terms", at);
-    return Value{a.poly * b.poly, a.has_variable || b.has_variable};
-  }
-
-  // Divides coefficient by coefficient: tighter than multiplying by an enclosure of 1/d.
-  Value divide(const Value& a, const Value& b, size_t divisor_at) {
-    if (b.has_variable) fail("division by an expression with variables (only constant divisors)", divisor_at);
-    const Interval d = b.constant();
-    if (boost::numeric::zero_in(d)) fail("division by an interval containing zero", divisor_at);
-    Polynomial r;
-    for (auto& [powers, c] : a.poly.terms()) r += monomial(powers) * (c / d);
-    return Value{r, a.has_variable};
-  }
-
-  int integer_exponent(const Value& e, size_t at) {
-    const Interval x = e.constant();
-    if (e.has_variable || x.lower() != x.upper() || x.lower() < 0 || std::floor(x.lower()) != x.lower())
-      fail(applications_ ? "exponent must be an integer or half-integer constant (x^(1/2) is sqrt(x))"
-                         : "exponent must be a non-negative integer constant",
-           at);
-    if (x.lower() > kMaxExponent) fail("exponent is larger than " + std::to_string(kMaxExponent), at);
-    return static_cast<int>(x.lower());
-  }
-
-  void check_finite(const Value& v, size_t at) {
-    for (auto& [powers, c] : v.poly.terms())
-      if (!is_finite(c)) fail("result is not finite (overflow)", at);
-  }
-
-  void expect_closing(size_t open_at) {
-    if (peek() == ')') {
-      ++pos_;
-      return;
-    }
-    if (pos_ == text_.size()) fail("missing ')' for the '(' at column " + std::to_string(open_at), pos_);
-    unexpected("')' (closing the '(' at column " + std::to_string(open_at) + ")");
-  }
-
-  // The parser stopped at a character that cannot continue the expression.
-  [[noreturn]] void unexpected(const std::string& expected) {
-    const char c = text_[pos_];
-    if (c == ')') fail("unmatched ')'", pos_);
-    if (is_identifier_char(c) || c == '(' || c == '.') fail("missing operator before " + describe(c), pos_);
-    fail("unexpected character " + describe(c) + ", expected " + expected, pos_);
-  }
-
-  [[noreturn]] void fail(const std::string& message, size_t column) {
-    throw ParseError(message, static_cast<int>(column));
-  }
-
-  char peek() { return next_token() < text_.size() ? text_[pos_] : '\0'; }
-
-  // Skips whitespace; returns the offset of the next token (text size at the end).
-  size_t next_token() {
-    skip_space();
-    return pos_;
-  }
-
-  void skip_space() {
-    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
-  }
-
-  // Recursion depth guard: deep nesting is an error message, not a stack overflow.
-  struct Nesting {
-    Parser& p;
-    Nesting(Parser& parser, size_t at) : p(parser) {
-      if (++p.depth_ > kMaxNesting) p.fail("expression nested too deeply", at);
-    }
-    ~Nesting() { --p.depth_; }
+Value Parser::number() {
+  const size_t start = pos_;
+  auto digits = [&] {
+    size_t n = 0;
+    for (; pos_ < text_.size() && is_digit(text_[pos_]); ++pos_) ++n;
+    return n;
   };
+  size_t mantissa_digits = digits();
+  if (pos_ < text_.size() && text_[pos_] == '.') {
+    ++pos_;
+    mantissa_digits += digits();
+  }
+  if (mantissa_digits == 0) fail("malformed number", start);
+  if (pos_ < text_.size() && (text_[pos_] == 'e' || text_[pos_] == 'E')) {
+    ++pos_;
+    if (pos_ < text_.size() && (text_[pos_] == '+' || text_[pos_] == '-')) ++pos_;
+    if (digits() == 0) fail("malformed number: exponent has no digits", start);
+  }
+  const std::string_view literal = text_.substr(start, pos_ - start);
+  if (pos_ < text_.size() && is_identifier_char(text_[pos_]))
+    fail("missing operator between the number " + std::string(literal) + " and " + describe(text_[pos_]) +
+             " (write 2*x, not 2x)",
+         pos_);
+  Interval x;
+  try {
+    x = rigorous::decimal(literal);
+  } catch (const std::invalid_argument&) {
+    fail("malformed number '" + std::string(literal) + "'", start);
+  }
+  if (!is_finite(x)) fail("number " + std::string(literal) + " is outside the range of a double", start);
+  return Value{Polynomial::constant(x), false};
+}
 
-  std::string_view text_;
-  const std::vector<std::string>& variables_;
-  std::vector<model::Application>* applications_;
-  IntervalConstants* intervals_;
-  Powers powers_;
-  size_t pos_ = 0;
-  int depth_ = 0;
-};
+Value Parser::identifier() {
+  const size_t start = pos_;
+  while (pos_ < text_.size() && is_identifier_char(text_[pos_])) ++pos_;
+  const std::string name(text_.substr(start, pos_ - start));
+  for (size_t i = 0; i < variables_.size(); ++i)
+    if (variables_[i] == name) return Value{Polynomial::variable(static_cast<int>(i)), true};
+  if (name == "pi") return Value{Polynomial::constant(rigorous::pi()), false};
+  const bool called = peek() == '(';
+  if (const Function* f = find_function(name)) {
+    if (!called) fail("function '" + name + "' needs a parenthesised argument", start);
+    return call(*f, start);
+  }
+  if (special_arity(name) > 0) {
+    if (!called) fail("function '" + name + "' needs a parenthesised argument", start);
+    return special(name, start);
+  }
+  if (is_nan_or_inf_name(name)) fail("'" + name + "' is not allowed: numbers must be finite", start);
+  if (called) fail("unknown function '" + name + "'", start);
+  if (variables_.empty()) fail("unknown name '" + name + "' (a constant expression has no variables)", start);
+  fail("unknown variable '" + name + "'", start);
+}
 
-}  // namespace
+bool Parser::is_half_integer(const Value& e) {
+  const Interval x = e.constant();
+  if (e.has_variable || x.lower() != x.upper() || x.lower() < 0) return false;
+  const double twice = 2 * x.lower();  // exact: a double times 2
+  return std::floor(twice) == twice && std::floor(x.lower()) != x.lower();
+}
+
+// base^(n + 1/2) = base^n * sqrt(base): a constant, or an application of sqrt.
+Value Parser::half_power(const Value& base, const Value& exponent, size_t base_at, size_t at, size_t exponent_at) {
+  const double e = exponent.constant().lower();
+  if (e > kMaxExponent) fail("exponent is larger than " + std::to_string(kMaxExponent), exponent_at);
+  const int n = static_cast<int>(std::floor(e));
+  Value root;
+  if (!base.has_variable) {
+    try {
+      root = Value{Polynomial::constant(rigorous::sqrt(base.constant())), false};
+    } catch (const std::domain_error&) {
+      fail("half-integer power of a negative number", at);
+    }
+  } else {
+    root = application(Lifted::sqrt, base.poly,
+                       "sqrt(" + std::string(trim(text_.substr(base_at, at - base_at))) + ")");
+  }
+  Value r = root;
+  Value b = base;
+  for (int k = n; k > 0; k >>= 1) {
+    if (k & 1) r = multiply(r, b, at);
+    if (k > 1) b = multiply(b, b, at);
+  }
+  check_finite(r, at);
+  return r;
+}
+
+Value Parser::multiply(const Value& a, const Value& b, size_t at) {
+  if (a.poly.terms().size() * b.poly.terms().size() > kMaxTermProducts)
+    fail("expression expands to too many terms", at);
+  return Value{a.poly * b.poly, a.has_variable || b.has_variable};
+}
+
+// Divides coefficient by coefficient: tighter than multiplying by an enclosure of 1/d.
+Value Parser::divide(const Value& a, const Value& b, size_t divisor_at) {
+  if (b.has_variable) fail("division by an expression with variables (only constant divisors)", divisor_at);
+  const Interval d = b.constant();
+  if (boost::numeric::zero_in(d)) fail("division by an interval containing zero", divisor_at);
+  Polynomial r;
+  for (auto& [powers, c] : a.poly.terms()) r += monomial(powers) * (c / d);
+  return Value{r, a.has_variable};
+}
+
+int Parser::integer_exponent(const Value& e, size_t at) {
+  const Interval x = e.constant();
+  if (e.has_variable || x.lower() != x.upper() || x.lower() < 0 || std::floor(x.lower()) != x.lower())
+    fail(applications_ ? "exponent must be an integer or half-integer constant (x^(1/2) is sqrt(x))"
+                       : "exponent must be a non-negative integer constant",
+         at);
+  if (x.lower() > kMaxExponent) fail("exponent is larger than " + std::to_string(kMaxExponent), at);
+  return static_cast<int>(x.lower());
+}
+
+void Parser::check_finite(const Value& v, size_t at) {
+  for (auto& [powers, c] : v.poly.terms())
+    if (!is_finite(c)) fail("result is not finite (overflow)", at);
+}
+
+void Parser::expect_closing(size_t open_at) {
+  if (peek() == ')') {
+    ++pos_;
+    return;
+  }
+  if (pos_ == text_.size()) fail("missing ')' for the '(' at column " + std::to_string(open_at), pos_);
+  unexpected("')' (closing the '(' at column " + std::to_string(open_at) + ")");
+}
+
+// The parser stopped at a character that cannot continue the expression.
+void Parser::unexpected(const std::string& expected) {
+  const char c = text_[pos_];
+  if (c == ')') fail("unmatched ')'", pos_);
+  if (is_identifier_char(c) || c == '(' || c == '.') fail("missing operator before " + describe(c), pos_);
+  fail("unexpected character " + describe(c) + ", expected " + expected, pos_);
+}
+
+}  // namespace detail
+
+using detail::Parser;
+using namespace expression_vocabulary;
 
 model::Polynomial parse_polynomial(std::string_view text, const std::vector<std::string>& variables) {
   return Parser(text, variables).parse().poly;
@@ -490,7 +318,7 @@ bool is_valid_variable_name(std::string_view name) {
   if (name.empty() || !is_identifier_start(name[0])) return false;
   for (char c : name)
     if (!is_identifier_char(c)) return false;
-  return name != "pi" && !find_function(name) && !is_piecewise(name) && !is_nan_or_inf_name(name);
+  return name != "pi" && !find_function(name) && special_arity(name) == 0 && !is_nan_or_inf_name(name);
 }
 
 }  // namespace linkbox::input

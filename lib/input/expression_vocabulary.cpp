@@ -20,6 +20,8 @@ constexpr Function kFunctions[] = {
     {"sqrt", rigorous::sqrt, true, Lifted::sqrt},   {"exp", rigorous::exp, true, Lifted::exp},
     {"log", rigorous::log, true, Lifted::log},      {"sinh", rigorous::sinh, true, Lifted::sinh},
     {"cosh", rigorous::cosh, true, Lifted::cosh},   {"tanh", rigorous::tanh, true, Lifted::tanh},
+    {"asinh", rigorous::asinh, true, Lifted::asinh}, {"acosh", rigorous::acosh, true, Lifted::acosh},
+    {"atanh", rigorous::atanh, true, Lifted::atanh},
 };
 
 }  // namespace
@@ -30,7 +32,10 @@ const Function* find_function(std::string_view name) {
   return nullptr;
 }
 
-bool is_piecewise(std::string_view name) { return name == "abs" || name == "min" || name == "max" || name == "sign"; }
+int special_arity(std::string_view name) {
+  if (name == "abs" || name == "sign") return 1;
+  return name == "min" || name == "max" || name == "atan2" ? 2 : 0;
+}
 
 bool is_identifier_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
 bool is_identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }

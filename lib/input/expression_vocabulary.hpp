@@ -20,8 +20,10 @@ struct Function {
   Lifted lifted;
 };
 const Function* find_function(std::string_view name);
-// abs, min, max and sign: rewritten through sqrt by the parser (Parser::piecewise).
-bool is_piecewise(std::string_view name);
+// The number of arguments of a function the parser handles itself (Parser::special): abs and
+// sign (1) and min and max (2), written through sqrt and division, and atan2 (2), an
+// application of two arguments; 0 for any other name.
+int special_arity(std::string_view name);
 
 bool is_identifier_start(char c);
 bool is_identifier_char(char c);

@@ -48,16 +48,17 @@ constexpr long kMaxVectorSize = 100000;
 const std::map<std::string, std::string, std::less<>> kFunctions = {
     {"sqrt", "sqrt"}, {"exp", "exp"},   {"ln", "log"},    {"sin", "sin"},   {"cos", "cos"},
     {"tan", "tan"},   {"asin", "asin"}, {"acos", "acos"}, {"atan", "atan"}, {"sinh", "sinh"},
-    {"cosh", "cosh"}, {"tanh", "tanh"}, {"abs", "abs"},   {"sign", "sign"},
+    {"cosh", "cosh"}, {"tanh", "tanh"}, {"abs", "abs"},   {"sign", "sign"}, {"asinh", "asinh"},
+    {"acosh", "acosh"}, {"atanh", "atanh"},
 };
 // Functions of two arguments.
-const std::set<std::string, std::less<>> kBinaryFunctions = {"min", "max"};
+const std::set<std::string, std::less<>> kBinaryFunctions = {"min", "max", "atan2"};
 const std::set<std::string, std::less<>> kUnsupportedFunctions = {
-    "atan2", "acosh", "asinh", "atanh", "floor",
-    "ceil", "integer", "chi", "inf",  "mid",  "sup",   "sum",   "diff",
+    "floor", "ceil", "integer", "chi", "inf", "mid", "sup", "sum", "diff",
 };
 const char* const kFunctionList =
-    "sqr, sqrt, exp, ln, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, abs, sign, min, max, pow";
+    "sqr, sqrt, exp, ln, sin, cos, tan, asin, acos, atan, atan2, sinh, cosh, tanh, asinh, acosh, atanh, abs, sign, "
+    "min, max, pow";
 
 // Block keywords are case-insensitive in Minibex ("Variables", "variables", "VARIABLES").
 const std::set<std::string, std::less<>> kKeywords = {

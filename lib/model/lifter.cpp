@@ -176,6 +176,7 @@ void Lifter::add_application_unknowns() {
     else if (a.function == Function::sqrt) add_sqrt_unknown(k, x);
     else if (a.function == Function::reciprocal) add_reciprocal_unknown(k, x);
     else if (a.function == Function::base) add_base_unknown(k, x);
+    else if (a.function == Function::atan2) add_atan2_unknown(k, index);
     else if (link_function(a.function, f)) add_link_unknown(k, f, index);
     else add_link_unknown(k, a.function == Function::sin ? Elementary::sin : Elementary::cos, index);  // linked_
   }
@@ -195,7 +196,8 @@ bool Lifter::multiplied(int k) const {
   };
   return std::any_of(raw_.equations.begin(), raw_.equations.end(), in) ||
          std::any_of(raw_.inequalities.begin(), raw_.inequalities.end(), [&](auto& q) { return in(q.g); }) ||
-         std::any_of(raw_.applications.begin(), raw_.applications.end(), [&](auto& a) { return in(a.argument); });
+         std::any_of(raw_.applications.begin(), raw_.applications.end(),
+                     [&](auto& a) { return in(a.argument) || in(a.second); });
 }
 
 // sin or cos of a multiple or a sum of angles that is multiplied: an unknown y with y - E = 0,
@@ -261,6 +263,47 @@ void Lifter::add_base_unknown(int k, const Polynomial& x) {
   lifting_->notes.push_back(a.text + " -> an unknown b with b = it, where it is raised to a power or multiplied (not expanded)");
 }
 
+// t = atan2(Y, X) with c = cos(t), s = sin(t), X s - Y c = 0 and X c + Y s > 0 (lifting.hpp
+// says why these hold exactly at t = atan2(Y, X) and nowhere else, and when -pi < t <= pi is
+// added). t is unknown `t`, added here, with c and s after it.
+void Lifter::add_atan2_unknown(int k, int t) {
+  const Application& a = raw_.applications[k];
+  Interval range;
+  try {
+    range = enclose_over(a, values_before(k));
+  } catch (const std::domain_error& e) {
+    fail_application(k, a.text + ": not defined anywhere on the domain (" + e.what() + ")");
+  }
+  const Interval domain = padded(range);
+  add_variable(a.text, domain, {Lifting::Source::Kind::application, k});
+  const int c = static_cast<int>(out_.variables.size());
+  add_variable("cos(" + a.text + ")", padded(rigorous::cos(range)), {Lifting::Source::Kind::angle_cos, k});
+  add_variable("sin(" + a.text + ")", padded(rigorous::sin(range)), {Lifting::Source::Kind::angle_sin, k});
+  out_.links.push_back({Elementary::cos, c, t, "cos(" + a.text + ")"});
+  out_.links.push_back({Elementary::sin, c + 1, t, "sin(" + a.text + ")"});
+  const Polynomial y = substituted(a.argument, k), x = substituted(a.second, k);
+  const Polynomial cos_t = Polynomial::variable(c), sin_t = Polynomial::variable(c + 1);
+  definitions_.emplace_back(x * sin_t - y * cos_t, a.text + ": (cos, sin) parallel to (x, y)");
+  add_inequality(-(x * cos_t + y * sin_t), true, a.text + ": (cos, sin) along (x, y), not 0");
+  std::string cut;
+  if (domain.upper() - domain.lower() > 6.28) {  // may hold two points 2 pi apart
+    const Polynomial pi = Polynomial::constant(rigorous::pi()), tp = Polynomial::variable(t);
+    add_inequality(-tp - pi, true, a.text + " > -pi");
+    add_inequality(tp - pi, false, a.text + " <= pi");
+    cut = ", and -pi < t <= pi (its arguments' ranges cross the cut)";
+  }
+  lifting_->notes.push_back(a.text + " -> an unknown t with the links cos(t), sin(t), (cos t, sin t) parallel to "
+                                     "(x, y) and pointing its way" + cut);
+}
+
+void Lifter::add_inequality(const Polynomial& g, bool strict, const std::string& name) {
+  Inequality q;
+  q.g = g;
+  q.strict = strict;
+  q.name = name;
+  out_.inequalities.push_back(std::move(q));
+}
+
 // y = f(a): y is unknown `y` (added here), a the argument's unknown (argument_unknown).
 void Lifter::add_link_unknown(int k, Elementary f, int y) {
   const Application& app = raw_.applications[k];
@@ -293,7 +336,9 @@ int Lifter::argument_unknown(int k, Elementary f, const Interval& range) {
   }
   Interval domain = range;
   if (f == Elementary::log) intersect(range, Interval(0.0, kInf), domain);
-  if (f == Elementary::asin || f == Elementary::acos) intersect(range, Interval(-1.0, 1.0), domain);
+  if (f == Elementary::asin || f == Elementary::acos || f == Elementary::atanh)
+    intersect(range, Interval(-1.0, 1.0), domain);
+  if (f == Elementary::acosh) intersect(range, Interval(1.0, kInf), domain);
   const int a = static_cast<int>(out_.variables.size());
   const std::string& text = raw_.applications[k].text;
   add_variable("argument of " + text, padded(domain), {Lifting::Source::Kind::argument, k});
@@ -397,14 +442,16 @@ std::string Lifter::angle_name(const Lifting::Angle& a, const char* f) const {
   return std::string(f) + "(" + (same_bounds(a.unit, Interval(1.0)) ? t : format(median(a.unit)) + "*" + t) + ")";
 }
 
-// The range of application k's argument over the domain, through the forward map.
-Interval Lifter::argument_range(int k) const {
+Box Lifter::values_before(int k) const {
   Box values = raw_domain();
   values.resize(n_ + k + 1, Interval(0.0));
   for (int i = 0; i < k; ++i)  // a cleared quotient has no enclosure, and k's argument has none of them
-    if (!cleared_[i]) values[n_ + i] = enclose(raw_.applications[i], raw_.applications[i].argument.eval(values));
-  return raw_.applications[k].argument.eval(values);
+    if (!cleared_[i]) values[n_ + i] = enclose_over(raw_.applications[i], values);
+  return values;
 }
+
+// The range of application k's argument over the domain, through the forward map.
+Interval Lifter::argument_range(int k) const { return raw_.applications[k].argument.eval(values_before(k)); }
 
 }  // namespace detail
 

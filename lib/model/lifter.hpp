@@ -73,6 +73,8 @@ class Lifter {
   void add_sqrt_unknown(int k, const Polynomial& x);
   void add_reciprocal_unknown(int k, const Polynomial& x);
   void add_base_unknown(int k, const Polynomial& x);
+  void add_atan2_unknown(int k, int t);
+  void add_inequality(const Polynomial& g, bool strict, const std::string& name);
   Polynomial substituted(const Polynomial& p, int application, int equation = -1, int inequality = -1) const;
   // The divisors that may be 0 (lifter_divisors.cpp).
   void find_cleared();
@@ -86,6 +88,7 @@ class Lifter {
   void add_variable(const std::string& name, const Interval& domain, Lifting::Source source);
   std::string angle_name(const Lifting::Angle& a, const char* f) const;
   Interval argument_range(int k) const;
+  Box values_before(int k) const;  // the declared domain and the applications before k
 
   const RawSystem& raw_;
   const int n_;

@@ -68,6 +68,7 @@ void Lifter::find_linked() {
       const Application& a = raw_.applications[k];
       if (!is_trig(a.function) || linked_[k]) {
         mark(a.argument);
+        mark(a.second);
         continue;
       }
       if (a.function == Function::tan) continue;  // tan of a non-angle is refused (find_angles)
@@ -112,7 +113,10 @@ void Lifter::find_angles() {
   for (size_t i = 0; i < raw_.equations.size(); ++i) only_inside(raw_.equations[i], "equation " + std::to_string(i + 1));
   for (auto& c : raw_.inequalities) only_inside(c.g, "\"" + c.name + "\"");
   for (int k = 0; k < static_cast<int>(raw_.applications.size()); ++k)
-    if (!is_angle_use(k)) only_inside(raw_.applications[k].argument, text(k));
+    if (!is_angle_use(k)) {
+      only_inside(raw_.applications[k].argument, text(k));
+      only_inside(raw_.applications[k].second, text(k));
+    }
 }
 
 // The coefficient of v in an affine argument.

@@ -28,8 +28,9 @@ void Lifter::find_cleared() {
   for (int k = 0; k < count; ++k) {
     const Application& a = raw_.applications[k];
     bool through_cleared = false;
-    for (int v : a.argument.variables())
-      through_cleared = through_cleared || (v >= n_ && (cleared_[v - n_] || holds_cleared[v - n_]));
+    for (const Polynomial* p : {&a.argument, &a.second})
+      for (int v : p->variables())
+        through_cleared = through_cleared || (v >= n_ && (cleared_[v - n_] || holds_cleared[v - n_]));
     if (a.function == Function::base) {
       holds_cleared[k] = through_cleared;
       expanded_[k] = through_cleared || !a.raised;

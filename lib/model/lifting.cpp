@@ -43,6 +43,7 @@ const char* to_string(Application::Function f) {
     case Function::tan: return "tan";
     case Function::sqrt: return "sqrt";
     case Function::reciprocal: return "1/";
+    case Function::atan2: return "atan2";
     case Function::base: return "base";
     default: {
       Elementary e;
@@ -59,6 +60,9 @@ bool link_function(Application::Function f, Elementary& out) {
     case Function::sinh: out = Elementary::sinh; return true;
     case Function::cosh: out = Elementary::cosh; return true;
     case Function::tanh: out = Elementary::tanh; return true;
+    case Function::asinh: out = Elementary::asinh; return true;
+    case Function::acosh: out = Elementary::acosh; return true;
+    case Function::atanh: out = Elementary::atanh; return true;
     case Function::asin: out = Elementary::asin; return true;
     case Function::acos: out = Elementary::acos; return true;
     case Function::atan: out = Elementary::atan; return true;
@@ -66,8 +70,15 @@ bool link_function(Application::Function f, Elementary& out) {
   }
 }
 
-Interval enclose(const Application& a, const Interval& x) {
+Interval enclose(const Application& a, const Interval& x, const Interval& second) {
   switch (a.function) {
+    case Function::atan2:
+      if (zero_in(x) && zero_in(second)) {
+        if (x.lower() == 0 && x.upper() == 0 && second.lower() == 0 && second.upper() == 0)
+          throw std::domain_error(a.text + ": both arguments are 0");
+        return Interval(-rigorous::pi().upper(), rigorous::pi().upper());
+      }
+      return rigorous::atan2(x, second);
     case Function::sin: return rigorous::sin(x);
     case Function::cos: return rigorous::cos(x);
     case Function::tan: return rigorous::tan(x);  // throws at a pole
@@ -87,6 +98,11 @@ Interval enclose(const Application& a, const Interval& x) {
       return image(e, x);
     }
   }
+}
+
+Interval enclose_over(const Application& a, const Box& values) {
+  const bool two = a.function == Function::atan2;
+  return enclose(a, a.argument.eval(values), two ? a.second.eval(values) : Interval(1.0));
 }
 
 bool same(const Polynomial& a, const Polynomial& b) {
@@ -112,7 +128,7 @@ Box Lifting::to_lifted(const Box& box) const {
   Box values(n + applications.size(), Interval(0.0));
   std::copy(box.begin(), box.begin() + n, values.begin());
   for (size_t k = 0; k < applications.size(); ++k)  // a cleared quotient: no unknown, no argument has it
-    if (k >= cleared.size() || !cleared[k]) values[n + k] = enclose(applications[k], applications[k].argument.eval(values));
+    if (k >= cleared.size() || !cleared[k]) values[n + k] = enclose_over(applications[k], values);
   Box out;
   for (const Source& src : sources) {
     switch (src.kind) {
@@ -131,6 +147,8 @@ Box Lifting::to_lifted(const Box& box) const {
       }
       case Source::Kind::application: out.push_back(values[n + src.index]); break;
       case Source::Kind::argument: out.push_back(applications[src.index].argument.eval(values)); break;
+      case Source::Kind::angle_cos: out.push_back(rigorous::cos(values[n + src.index])); break;
+      case Source::Kind::angle_sin: out.push_back(rigorous::sin(values[n + src.index])); break;
     }
   }
   return out;

@@ -55,7 +55,16 @@
 //    fails, so no such point is counted (a root of the cleared equations where the enclosure
 //    cannot decide the sign of B is unresolved, as on any inequality's boundary). Any other
 //    function of an expression holding such a quotient is refused (its range is unbounded).
-//  - exp, log, sinh, cosh, tanh, asin, acos, atan (and sin, cos as above) of any expression
+//  - atan2(Y, X) of any expressions: an unknown t with the links c = cos(t), s = sin(t), the
+//    equation X s - Y c = 0 and the strict inequality X c + Y s > 0. Together they say that
+//    (c, s) is the direction of (X, Y) != 0, so t = atan2(Y, X) up to a multiple of 2 pi; and
+//    the system is square and regular in (t, c, s) there (the determinant is |(X, Y)| > 0).
+//    t's domain is atan2 of the ranges of Y and X; where that spans 2 pi (the ranges cross
+//    the cut, the negative X axis) -pi < t <= pi is added, which keeps one t per point. A
+//    point with X = Y = 0 fails the strict inequality; a root on the cut itself (Y = 0,
+//    X < 0) is on the boundary of t <= pi, so it is at best unresolved, never counted twice.
+//  - exp, log, sinh, cosh, tanh, asinh, acosh, atanh, asin, acos, atan (and sin, cos as above) of
+//    any expression
 //    A, which no polynomial relates to its argument: an unknown y and a link y = f(a)
 //    (model/link.hpp), used only where no polynomial lifting applies, where a is A
 //    itself when A is one variable, else a new unknown with the equation a - A = 0. The
@@ -76,17 +85,23 @@ namespace linkbox::model {
 // A function applied to an expression with variables, as the parser meets it. In a
 // RawSystem, variable index n + k (n = declared variables) stands for application k.
 struct Application {
-  enum class Function { sin, cos, tan, sqrt, exp, log, sinh, cosh, tanh, asin, acos, atan, reciprocal, base };
+  enum class Function {
+    sin, cos, tan, sqrt, exp, log, sinh, cosh, tanh, asinh, acosh, atanh, asin, acos, atan, atan2, reciprocal, base
+  };
   Function function;
   Polynomial argument;  // over the declared variables and the applications before this one
   std::string text;     // as written, e.g. "sin(2*t + pi/4)": names and messages
   bool raised = false;  // base: raised to a power somewhere (else it is expanded in place)
+  Polynomial second;    // atan2(argument, second): X of atan2(Y, X); empty for the others
 };
 const char* to_string(Application::Function f);
-// An enclosure of the application's value where its argument is in `x` (reciprocal: 1/x).
-// Throws std::domain_error when no point of x is in the function's domain (sqrt: x < 0; tan:
-// a pole; reciprocal: x holds 0; log: x <= 0; asin, acos: outside [-1, 1]).
-Interval enclose(const Application& a, const Interval& x);
+// An enclosure of the application's value where its argument is in `x` (reciprocal: 1/x;
+// atan2: where X is in `second`). Throws std::domain_error when no point of x is in the
+// function's domain (sqrt: x < 0; tan: a pole; reciprocal: x holds 0; log: x <= 0; asin,
+// acos: outside [-1, 1]; atan2: x and second both 0).
+Interval enclose(const Application& a, const Interval& x, const Interval& second = Interval(1.0));
+// The same where the declared variables and the earlier applications' values are `values`.
+Interval enclose_over(const Application& a, const Box& values);
 // The link function of `f` (exp, log, sinh, cosh, tanh, asin, acos, atan); false for the
 // functions lifted to polynomial equations.
 bool link_function(Application::Function f, Elementary& out);
@@ -134,8 +149,10 @@ struct Lifting {
   };
   // Where each lifted variable comes from.
   struct Source {
-    enum class Kind { declared, cos, sin, tan_angle, application, argument } kind;
-    int index;  // declared variable, angle, angle, application, application (a link's argument)
+    enum class Kind { declared, cos, sin, tan_angle, application, argument, angle_cos, angle_sin } kind;
+    // declared variable, angle, angle, application, application (a link's argument),
+    // application (cos and sin of an atan2's value)
+    int index;
   };
 
   std::vector<Variable> declared;         // the case's own variables: what is reported

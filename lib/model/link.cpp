@@ -75,6 +75,12 @@ bool preimage(Elementary f, Interval y, Interval& out) {
       return true;
     case Elementary::log: out = exp(y); return true;
     case Elementary::sinh: out = rigorous::asinh(y); return true;
+    case Elementary::asinh: out = rigorous::sinh(y); return true;
+    case Elementary::acosh:  // v = cosh(w), w >= 0
+      if (!clip(y, 0.0, kInf)) return false;
+      out = rigorous::cosh(y);
+      return true;
+    case Elementary::atanh: out = rigorous::tanh(y); return true;
     case Elementary::cosh:  // |v| = acosh(y), y >= 1
       if (!clip(y, 1.0, kInf)) return false;
       out = rigorous::acosh(y);
@@ -120,6 +126,8 @@ bool narrow_argument(Elementary f, const Interval& y, Interval& a) {
 bool to_domain(Elementary f, Interval& a) {
   switch (f) {
     case Elementary::log: return a.upper() > 0 && clip(a, 0.0, kInf);
+    case Elementary::acosh: return clip(a, 1.0, kInf);
+    case Elementary::atanh:
     case Elementary::asin:
     case Elementary::acos: return clip(a, -1.0, 1.0);
     default: return true;
@@ -135,6 +143,9 @@ const char* to_string(Elementary f) {
     case Elementary::sinh: return "sinh";
     case Elementary::cosh: return "cosh";
     case Elementary::tanh: return "tanh";
+    case Elementary::asinh: return "asinh";
+    case Elementary::acosh: return "acosh";
+    case Elementary::atanh: return "atanh";
     case Elementary::asin: return "asin";
     case Elementary::acos: return "acos";
     case Elementary::atan: return "atan";
@@ -147,6 +158,8 @@ const char* to_string(Elementary f) {
 bool within_domain(Elementary f, const Interval& x) {
   switch (f) {
     case Elementary::log: return x.lower() > 0;
+    case Elementary::acosh: return x.lower() >= 1;
+    case Elementary::atanh: return x.lower() > -1 && x.upper() < 1;
     case Elementary::asin:
     case Elementary::acos: return x.lower() >= -1 && x.upper() <= 1;
     default: return true;
@@ -168,6 +181,9 @@ Interval image(Elementary f, const Interval& x) {
     case Elementary::sinh: return rigorous::sinh(a);
     case Elementary::cosh: return rigorous::cosh(a);
     case Elementary::tanh: return rigorous::tanh(a);
+    case Elementary::asinh: return rigorous::asinh(a);
+    case Elementary::acosh: return rigorous::acosh(a);
+    case Elementary::atanh: return rigorous::atanh(a);  // infinite at +-1
     case Elementary::asin: return rigorous::asin(a);
     case Elementary::acos: return rigorous::acos(a);
     case Elementary::atan: return rigorous::atan(a);
@@ -191,6 +207,15 @@ Interval derivative(Elementary f, const Interval& x) {
     case Elementary::tanh: {
       Interval d = one - boost::numeric::square(rigorous::tanh(x));
       clip(d, 0.0, 1.0);  // 1 - tanh^2 is in (0, 1]
+      return d;
+    }
+    case Elementary::asinh: return one / boost::numeric::sqrt(one + boost::numeric::square(x));
+    case Elementary::acosh:
+      return x.lower() > 1 ? one / boost::numeric::sqrt(boost::numeric::square(x) - one) : kWhole;
+    case Elementary::atanh: {
+      if (!(x.lower() > -1 && x.upper() < 1)) return kWhole;
+      Interval d = one / (one - boost::numeric::square(x));
+      clip(d, 1.0, kInf);  // 1 / (1 - x^2) >= 1
       return d;
     }
     case Elementary::asin:
@@ -220,6 +245,9 @@ double row_value_float(const Link& l, const double* x) {
     case Elementary::sinh: v = std::sinh(a); break;
     case Elementary::cosh: v = std::cosh(a); break;
     case Elementary::tanh: v = std::tanh(a); break;
+    case Elementary::asinh: v = std::asinh(a); break;
+    case Elementary::acosh: v = std::acosh(a); break;
+    case Elementary::atanh: v = std::atanh(a); break;
     case Elementary::asin: v = std::asin(a); break;
     case Elementary::acos: v = std::acos(a); break;
     case Elementary::atan: v = std::atan(a); break;
@@ -237,6 +265,9 @@ double row_derivative_float(const Link& l, const double* x) {
     case Elementary::sinh: return -std::cosh(a);
     case Elementary::cosh: return -std::sinh(a);
     case Elementary::tanh: return -(1 - std::tanh(a) * std::tanh(a));
+    case Elementary::asinh: return -1 / std::sqrt(1 + a * a);
+    case Elementary::acosh: return -1 / std::sqrt(a * a - 1);
+    case Elementary::atanh: return -1 / (1 - a * a);
     case Elementary::asin: return -1 / std::sqrt(1 - a * a);
     case Elementary::acos: return 1 / std::sqrt(1 - a * a);
     case Elementary::atan: return -1 / (1 + a * a);

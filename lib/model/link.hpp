@@ -5,8 +5,9 @@
 //
 // Everything here is an outward-rounded enclosure through MPFI (interval/rigorous.hpp): the
 // images, the derivatives, the inverses. f is defined on its domain (log: x > 0; asin, acos:
-// [-1, 1]; the others: every real) and a link holds only there, so a box's part outside the
-// domain holds no point of the link: narrowing a box to the domain loses no root.
+// [-1, 1]; acosh: x >= 1; atanh: -1 < x < 1; the others: every real) and a link holds only
+// there, so a box's part outside the domain holds no point of the link: narrowing a box to
+// the domain (closed: atanh's to [-1, 1], where its image is infinite) loses no root.
 #include "interval/box.hpp"
 
 #include <string>
@@ -14,7 +15,7 @@
 
 namespace linkbox::model {
 
-enum class Elementary { exp, log, sinh, cosh, tanh, asin, acos, atan, sin, cos };
+enum class Elementary { exp, log, sinh, cosh, tanh, asinh, acosh, atanh, asin, acos, atan, sin, cos };
 const char* to_string(Elementary f);
 
 // One link's image, inverse or derivative through MPFI costs about this many interval

@@ -322,6 +322,76 @@ TEST_CASE("abs, min, max, sign and negative powers: the closed forms' roots, cer
   CHECK(std::fabs(median(folded.roots[0][0]) - 4.5) < 1e-13);
 }
 
+TEST_CASE("atan2: the closed forms' roots, certified, and none twice across its cut", "[functions]") {
+  const std::string plane = R"~({ name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] })~";
+  // On the unit circle atan2(y, x) = 2 at (cos 2, sin 2); its square is 4 at angle -2 too.
+  // The domain crosses the cut, so -pi < t <= pi is part of the model.
+  Run one = solve_text(polynomial_case(plane, R"~("x^2 + y^2 - 1", "atan2(y, x) - 2")~"));
+  CHECK(one.v.exact);
+  REQUIRE(one.roots.size() == 1);
+  CHECK(has_root_near(one.roots, {std::cos(2.0), std::sin(2.0)}, 1e-13));
+  const auto& notes = system_of(one).lifting->notes;
+  CHECK(std::any_of(notes.begin(), notes.end(), [](auto& n) { return n.find("cross the cut") != std::string::npos; }));
+  Run both = solve_text(polynomial_case(plane, R"~("x^2 + y^2 - 1", "atan2(y, x)^2 - 4")~"));
+  CHECK(both.v.exact);
+  REQUIRE(both.roots.size() == 2);
+  CHECK(has_root_near(both.roots, {std::cos(2.0), -std::sin(2.0)}, 1e-13));
+  // Away from the cut (y < 0 on the whole domain) no inequality on t is needed.
+  Run lower = solve_text(polynomial_case(R"~({ name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, -0.1] })~",
+                                         R"~("x^2 + y^2 - 1", "atan2(y, x) + 2.5")~"));
+  CHECK(lower.v.exact);
+  REQUIRE(lower.roots.size() == 1);
+  CHECK(has_root_near(lower.roots, {std::cos(2.5), -std::sin(2.5)}, 1e-13));
+  CHECK(system_of(lower).inequalities.size() == 1);
+  // Just above and just below the cut: atan2(+-1e-9, x) = +-c x^2 has one root near x = -1
+  // (angle near +-pi) and one near x = 0.00068, each once.
+  for (const double y : {1e-9, -1e-9}) {
+    INFO("y = " << y);
+    const std::string sign = y > 0 ? "" : "-";
+    Run near = solve_text(polynomial_case(plane, "\"y - " + sign + "1e-9\", \"atan2(y, x) - " + sign +
+                                                     "3.14159265358979*x^2\""));
+    CHECK(near.v.exact);
+    REQUIRE(near.roots.size() == 2);
+    for (const Box& r : near.roots) {
+      const double x = median(r[0]);
+      CHECK(std::fabs(std::atan2(y, x) - (y > 0 ? 1 : -1) * 3.14159265358979 * x * x) < 1e-9);
+    }
+  }
+  // On the cut itself (y = 0, x = -1, angle pi) the root is on the boundary of t <= pi: it is
+  // unresolved, never certified (and never twice), and its box holds it.
+  Run cut = solve_text(polynomial_case(plane, R"~("y", "atan2(y, x) - 3.14159265358979*x^2")~"));
+  CHECK(cut.roots.empty());
+  bool held = false;
+  for (auto& s : cut.r.subproblems)
+    for (auto& b : s.solutions) {
+      const Box out = cut.c.formulation->to_output(s.index, b);
+      held = held || (contains(out[0], -std::sqrt(M_PI / 3.14159265358979)) && contains(out[1], 0.0));
+    }
+  CHECK(held);
+}
+
+TEST_CASE("asinh, acosh and atanh: the closed forms' roots, certified, and constants folded", "[functions]") {
+  Run asinh = solve_text(polynomial_case(R"~({ name = "x", domain = [-3, 3] })~", R"~("asinh(2*x) - 1")~"));
+  CHECK(asinh.v.exact);
+  REQUIRE(asinh.roots.size() == 1);
+  CHECK(has_root_near(asinh.roots, {std::sinh(1.0) / 2}, 1e-13));
+  // acosh is defined from 1: a domain reaching below loses no root. atanh is defined inside
+  // (-1, 1), where it is unbounded toward the ends: a domain reaching them is refused (below).
+  Run acosh = solve_text(polynomial_case(R"~({ name = "x", domain = [0, 5] })~", R"~("acosh(x) - 2")~"));
+  CHECK(acosh.v.exact);
+  REQUIRE(acosh.roots.size() == 1);
+  CHECK(has_root_near(acosh.roots, {std::cosh(2.0)}, 1e-12));
+  Run atanh = solve_text(polynomial_case(R"~({ name = "x", domain = [-0.9, 0.95] })~", R"~("atanh(x) - 0.5")~"));
+  CHECK(atanh.v.exact);
+  REQUIRE(atanh.roots.size() == 1);
+  CHECK(has_root_near(atanh.roots, {std::tanh(0.5)}, 1e-13));
+  Run folded = solve_text(polynomial_case(R"~({ name = "x", domain = [0, 10] })~",
+                                          R"~("x - asinh(1) - acosh(2) - atanh(0.5) - atan2(1, -1)")~"));
+  REQUIRE(folded.roots.size() == 1);
+  CHECK(std::fabs(median(folded.roots[0][0]) - (std::asinh(1.0) + std::acosh(2.0) + std::atanh(0.5) + 0.75 * M_PI)) <
+        1e-13);
+}
+
 TEST_CASE("the back-map encloses the angle: random points of the lifted circle", "[functions]") {
   // For every chart, to_declared of a tiny box around (cos u, sin u) must contain t = u/unit,
   // and to_lifted of t must contain the lifted point.
@@ -376,6 +446,9 @@ TEST_CASE("functions of variables: what cannot be lifted is an InputError at its
       {R"~({ name = "t", domain = [0, 1] })~", R"~("cos(2*t) - 2*cos(t)^2 + 1")~", 6, "constant once sin and cos"},
       {R"~({ name = "x", domain = [0, 1] })~", R"~("x^(1/3) - 1")~", 6, "an integer or half-integer"},
       {R"~({ name = "x", domain = [0, 1] })~", R"~("x <= 1")~", 6, "inequalities go under 'inequalities'"},
+      {R"~({ name = "x", domain = [0, 1] })~", R"~("x - atan2(0, 0)")~", 6, "atan2(0, 0) is not defined"},
+      {R"~({ name = "x", domain = [0, 1] })~", R"~("acosh(x - 2) - 1")~", 6, "outside the domain of acosh"},
+      {R"~({ name = "x", domain = [-2, 2] })~", R"~("atanh(x) - 1")~", 6, "its value is not bounded on the domain"},
   };
   for (auto& b : bad) {
     std::string toml = "kind = \"polynomial\"\nname = \"t\"\nvariables = [\n  " + b.variables + "\n]\nequations = [ " +

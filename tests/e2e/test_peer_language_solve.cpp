@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 using namespace linkbox;
@@ -85,6 +86,21 @@ end
     refused = e.line == 4 && std::string(e.message).find("max") != std::string::npos;
   }
   CHECK(refused);
+}
+
+TEST_CASE("peer language: atan2 and the inverse hyperbolic functions read as IbexSolve reads them",
+          "[peer][functions]") {
+  // A root planted on the circle of radius 2 at the angle 2 (x = 2 cos 2, y = 2 sin 2); other
+  // points of the circle may solve it too.
+  const double x = 2 * std::cos(2.0), y = 2 * std::sin(2.0);
+  std::ostringstream bch;
+  bch.precision(17);
+  bch << "Variables\n  x in [-3, 3];\n  y in [-3, 3];\nConstraints\n  x^2 + y^2 = 4;\n"
+      << "  atan2(y, x) + acosh(2 + y^2) - atanh(x/5) = " << 2 + std::acosh(2 + y * y) - std::atanh(x / 5) << ";\nend\n";
+  const test::SolvedCase peer = solve_peer(bch.str(), "angle.bch", 1e-6);
+  CHECK(peer.v.exact);
+  REQUIRE(peer.roots.size() >= 1);
+  CHECK(holding(peer.roots, {x, y}) == 1);
 }
 
 TEST_CASE("interval constants: planted families keep their roots for every value", "[peer][interval-constants]") {

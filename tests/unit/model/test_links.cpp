@@ -28,6 +28,9 @@ long double f_log(long double x) { return logl(x); }
 long double f_sinh(long double x) { return sinhl(x); }
 long double f_cosh(long double x) { return coshl(x); }
 long double f_tanh(long double x) { return tanhl(x); }
+long double f_asinh(long double x) { return asinhl(x); }
+long double f_acosh(long double x) { return acoshl(x); }
+long double f_atanh(long double x) { return atanhl(x); }
 long double f_asin(long double x) { return asinl(x); }
 long double f_acos(long double x) { return acosl(x); }
 long double f_atan(long double x) { return atanl(x); }
@@ -40,6 +43,8 @@ const Case kCases[] = {
     {Elementary::tanh, -5, 5, f_tanh},        {Elementary::asin, -0.999, 0.999, f_asin},
     {Elementary::acos, -0.999, 0.999, f_acos}, {Elementary::atan, -30, 30, f_atan},
     {Elementary::sin, -7, 7, f_sin},          {Elementary::cos, -7, 7, f_cos},
+    {Elementary::asinh, -50, 50, f_asinh},    {Elementary::acosh, 1.001, 50, f_acosh},
+    {Elementary::atanh, -0.999, 0.999, f_atanh},
 };
 
 // The long double value, widened by a few of its ulps: an independent (libm) enclosure.
@@ -130,6 +135,22 @@ TEST_CASE("a link holds only in its function's domain", "[links]") {
   CHECK(contains(box[0], r));
   CHECK(contains(box[0], -r));
   CHECK(box[0].upper() < r + 1e-12);
+  // acosh is defined from 1 and atanh strictly inside (-1, 1), where it tends to infinity.
+  const Link acosh{Elementary::acosh, 1, 0, "acosh"};
+  box = {Interval(-3, 0.9), Interval(-10, 10)};
+  CHECK_FALSE(model::narrow(acosh, box));
+  box = {Interval(0, 2), Interval(-10, 10)};
+  REQUIRE(model::narrow(acosh, box));
+  CHECK(box[0].lower() == 1);
+  CHECK(box[1].lower() >= 0);
+  CHECK(!is_finite(model::row_derivative(acosh, Interval(1, 2))));  // acosh' is unbounded at 1
+  const Link atanh{Elementary::atanh, 1, 0, "atanh"};
+  box = {Interval(1.5, 3), Interval(-10, 10)};
+  CHECK_FALSE(model::narrow(atanh, box));
+  box = {Interval(0.5, 3), Interval(0, 1)};
+  REQUIRE(model::narrow(atanh, box));
+  CHECK(box[0].upper() < std::tanh(1.0) + 1e-12);  // atanh(a) <= 1 keeps a below tanh(1)
+  CHECK(!is_finite(model::row_value(atanh, Interval(0), Interval(0.5, 1))));
 }
 
 TEST_CASE("compiled links are the rows y - f(a) with entries 1 and -f'(a)", "[links]") {
