@@ -1,5 +1,7 @@
 #include "model/polynomial.hpp"
 
+#include "interval/rigorous.hpp"
+
 #include <algorithm>
 #include <sstream>
 
@@ -181,11 +183,35 @@ std::string Polynomial::to_string(const std::vector<std::string>& names) const {
   return os.str();
 }
 
+namespace {
+
+// The arc's side by the angle phi of the box's circle points from the arc's centre: inside
+// when |phi| <= half throughout, outside when half < |phi| <= pi throughout.
+Side side_of_arc(const Inequality::Arc& a, const Box& box) {
+  const Interval &c = box[a.c], &s = box[a.s];
+  const Interval x = c * a.cos_centre + s * a.sin_centre, y = s * a.cos_centre - c * a.sin_centre;
+  const Interval h = a.half;
+  if (x.lower() > 0) {  // phi in (-pi/2, pi/2)
+    const Interval phi = rigorous::atan(y / x);
+    if (phi.lower() >= -h.lower() && phi.upper() <= h.lower()) return Side::inside;
+    if (phi.lower() > h.upper() || phi.upper() < -h.upper()) return Side::outside;
+    return Side::boundary;
+  }
+  if (x.upper() < 0) {  // |phi| = pi - |atan(y / x)|, in (pi/2, pi]
+    const Interval phi = rigorous::pi() - boost::numeric::abs(rigorous::atan(y / x));
+    if (phi.upper() <= h.lower()) return Side::inside;
+    if (phi.lower() > h.upper()) return Side::outside;
+  }
+  return Side::boundary;
+}
+
+}  // namespace
+
 Side side_of(const Inequality& c, const Box& box) {
   const Interval g = c.g.eval(box);
   if (c.strict ? g.upper() < 0 : g.upper() <= 0) return Side::inside;
   if (c.strict ? g.lower() >= 0 : g.lower() > 0) return Side::outside;
-  return Side::boundary;
+  return c.arc && !c.strict ? side_of_arc(*c.arc, box) : Side::boundary;
 }
 
 const char* to_string(Side s) {

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,10 +70,20 @@ struct Inequality {
   Polynomial g;
   bool strict = false;
   std::string name;  // for messages: as the user wrote it, e.g. "x + y <= 1"
+  // An angle's domain as an arc (model/lifting.hpp): g <= 0 says that the point (c, s) =
+  // (x[c], x[s]) of the unit circle is within `half` of the direction (cos_centre,
+  // sin_centre). Near the far end of a wide arc g is flat in the angle (a root 1e-8 outside
+  // the arc moves g by 5e-17), so side_of decides it by the angle instead.
+  struct Arc {
+    int c = -1, s = -1;
+    Interval cos_centre, sin_centre, half;  // half < pi
+  };
+  std::optional<Arc> arc = std::nullopt;
 };
 
 // Where a box lies with respect to an inequality: every point satisfies it (inside), none
-// does (outside), or the enclosure cannot tell (boundary: the box may straddle g = 0).
+// does (outside), or the enclosure cannot tell (boundary: the box may straddle g = 0). For an
+// arc, of the box's points on the unit circle (what the system's circle equation leaves).
 enum class Side { inside, outside, boundary };
 Side side_of(const Inequality& c, const Box& box);
 const char* to_string(Side s);

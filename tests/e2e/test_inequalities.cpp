@@ -7,6 +7,7 @@
 #include "formulate/to_lph.hpp"
 #include "input/expression.hpp"
 #include "input/input_error.hpp"
+#include "interval/rigorous.hpp"
 #include "prune/hc4.hpp"
 #include "prune/lp/lph_relaxation.hpp"
 #include "prune/lp_relaxation.hpp"
@@ -336,4 +337,49 @@ links = [
   // A full turn is accepted and constrains nothing.
   const auto ok = formulate::load_case_text(head + "a = [\"-pi\", \"pi\"]\n", "inline.toml");
   CHECK(ok.formulation->natural(0).inequalities.empty());
+}
+
+TEST_CASE("an angle's domain arc is decided by the angle where its inequality is flat", "[inequalities][verify]") {
+  // sin(t) = 0 has the roots 0 and pi. A domain that ends 1e-8 short of 0 (2 pi) at both ends
+  // leaves 0 outside; one that reaches 1e-8 past 0 holds it. Either way the arc inequality
+  // cos(t - m) >= cos(h) moves by 5e-17 there, below its enclosure's rounding: only the angle
+  // of the certified box decides it.
+  const auto run = [](const std::string& domain) {
+    return solve_text("kind = \"polynomial\"\nname = \"t\"\nvariables = [ { name = \"t\", domain = " + domain +
+                      " } ]\nequations = [ \"sin(t)\" ]\n");
+  };
+  Run short_of = run("[\"1e-8\", \"2*pi - 1e-8\"]");
+  CHECK(short_of.v.exact);
+  REQUIRE(short_of.roots.size() == 1);
+  CHECK(contains(short_of.roots[0][0], M_PI));
+  CHECK(count(short_of.v, verify::ClusterStatus::infeasible) == 1);
+  CHECK(check(short_of).empty());
+  Run past = run("[\"-1e-8\", \"2*pi - 2e-8\"]");
+  CHECK(past.v.exact);
+  REQUIRE(past.roots.size() == 2);
+  CHECK(check(past).empty());
+}
+
+TEST_CASE("the arc's side by the angle never contradicts the angle", "[inequalities][soundness]") {
+  // Random arcs and tiny boxes around points of the circle at angle phi from the centre: an
+  // arc inequality said to hold has |phi| <= h, one said to fail |phi| > h.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int decided = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double m = -4 + 8 * unit(rng), h = 0.1 + 3.04 * unit(rng);
+    const double near = unit(rng) < 0.5 ? h : M_PI;  // near the arc's end, or its far point
+    const double phi = (unit(rng) < 0.5 ? -1 : 1) * std::min(M_PI, near + 1e-6 * (2 * unit(rng) - 1));
+    model::Inequality q;
+    q.g = Polynomial::constant(rigorous::cos(Interval(h))) - Polynomial::variable(0) * rigorous::cos(Interval(m)) -
+          Polynomial::variable(1) * rigorous::sin(Interval(m));
+    q.arc = model::Inequality::Arc{0, 1, rigorous::cos(Interval(m)), rigorous::sin(Interval(m)), Interval(h)};
+    const Interval u = Interval(m) + Interval(phi);
+    const Interval pad(-1e-13, 1e-13);
+    const model::Side side = model::side_of(q, {rigorous::cos(u) + pad, rigorous::sin(u) + pad});
+    if (side == model::Side::inside) CHECK(std::fabs(phi) <= h);
+    if (side == model::Side::outside) CHECK(std::fabs(phi) > h);
+    decided += side != model::Side::boundary;
+  }
+  CHECK(decided > 15000);
 }
