@@ -31,8 +31,8 @@ TOOLS = ("linkbox", "ibexsolve")
 # What was found by hand in the logs (linkbox's JSON, IbexSolve's report) of the run corpus.csv
 # holds, on files where the counts differ or something is left unresolved, and on odd runs.
 OUTSIDE = ("domain [1e-8, 2*pi-1e-8]: the roots with every x_i = 0 and every x_i = 2*pi lie 1e-8 outside it; linkbox "
-           "certifies the latter but cannot tell on which side of the domain's edge it lies, so leaves "
-           "it unresolved and does not count it")
+           "certifies the latter and proves it outside the domain by its angle (since 5358a90; before, it was "
+           "left unresolved, on the domain inequality's boundary), so does not count it")
 NOTES = {
     "non-polynom/Trigo1-0005.bch": OUTSIDE + "; IbexSolve does not report it: both count the 3 roots inside.",
     "non-polynom/Trigo1-0012.bch": OUTSIDE + " (IbexSolve stopped at its limit).",
@@ -55,11 +55,9 @@ NOTES["polynom/BroydenTri-0090.bch"] = "linkbox " + EDGE
 NOTES["polynom/Redeco9.bch"] = "linkbox " + EDGE
 NOTES["non-polynom/trigonometric-05.bch"] = NOTES["non-polynom/Trigonometric-05.bch"]
 NOTES["non-polynom/SjirkBoon.bch"] = (
-    "linkbox finished in 6.1-6.5 CPU s in the 2026-11-29 07:10 run (race won by hc4,newton); since the "
-    "lp contractor's nearest-bound order its LPs are cheaper and the race hands the lead to "
-    "hc4,newton/lp at its second choice, on tree shares below 0.001 (8.8 s alone, against 4.8 s for "
-    "hc4,newton alone): a misjudgement of the race, after this run mended by a minimum tree share "
-    "before the lead changes hands (auto 6.5 s; papers/decisions/solve-driver.md).")
+    "linkbox timed out in the 2026-11-29 09:40 run: the race handed the lead to hc4,newton/lp on tree "
+    "shares below 0.001 (8.8 s alone, against 4.8 s for hc4,newton alone). Since a minimum tree share "
+    "before the lead changes hands (753f3ee, papers/decisions/solve-driver.md) it finishes, as here.")
 
 
 def cpu_limited(linkbox, logs):
