@@ -6,6 +6,7 @@
 #include "input/expression.hpp"
 #include "input/expression_vocabulary.hpp"
 
+#include <cctype>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -88,10 +89,9 @@ class Parser {
 
   // Skips whitespace; returns the offset of the next token (text size at the end).
   size_t next_token() {
-    while (pos_ < text_.size() && is_space(text_[pos_])) ++pos_;
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
     return pos_;
   }
-  static bool is_space(char c) { return c == ' ' || (c >= '\t' && c <= '\r'); }
 
   // Recursion depth guard: deep nesting is an error message, not a stack overflow.
   struct Nesting {
