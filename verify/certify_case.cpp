@@ -205,11 +205,12 @@ std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& f, const so
   return tasks;
 }
 
-ClusterReport verify_cluster(const formulate::Formulation& f, const ClusterTask& task, const VerifyOptions& options) {
+namespace {
+
+// The cluster's boxes, worst residual and hull; its members (output variables, unwrapped).
+ClusterReport gather(const formulate::Formulation& f, const ClusterTask& task, std::vector<Box>& member) {
   const bool angles = f.outputs_are_angles();
-  const std::vector<bool> periodic(f.output_names().size(), angles);
   ClusterReport c;
-  std::vector<Box> member;
   for (size_t i = 0; i < task.outputs.size(); ++i) {
     c.boxes.push_back(task.boxes.at(i));
     member.push_back(unwrap(task.outputs[i], task.outputs[0], angles));
@@ -217,6 +218,22 @@ ClusterReport verify_cluster(const formulate::Formulation& f, const ClusterTask&
   }
   c.hull = member.at(0);
   for (auto& b : member) c.hull = hull(c.hull, b);
+  return c;
+}
+
+}  // namespace
+
+ClusterReport skipped_cluster(const formulate::Formulation& f, const ClusterTask& task, const std::string& why) {
+  std::vector<Box> member;
+  ClusterReport c = gather(f, task, member);
+  c.reason = "verification skipped (" + why + ")";
+  return c;
+}
+
+ClusterReport verify_cluster(const formulate::Formulation& f, const ClusterTask& task, const VerifyOptions& options) {
+  const std::vector<bool> periodic(f.output_names().size(), f.outputs_are_angles());
+  std::vector<Box> member;
+  ClusterReport c = gather(f, task, member);
   if (options.skip_rest && options.skip_rest()) {
     c.reason = "verification skipped (interrupted)";
     return c;
@@ -261,8 +278,18 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
   std::atomic<size_t> done{0};
   std::mutex line_m;
   auto last_line = t0;
+  std::atomic<bool> timed_out{false};
+  auto past_limit = [&] {
+    return options.time_limit > 0 &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > options.time_limit;
+  };
   for_each_index(tasks.size(), options.threads, [&](size_t k) {
-    clusters[k] = verify_cluster(f, tasks[k], options);
+    if (past_limit()) {
+      timed_out = true;
+      clusters[k] = skipped_cluster(f, tasks[k], "time limit");
+    } else {
+      clusters[k] = verify_cluster(f, tasks[k], options);
+    }
     ++done;
     if (!options.progress) return;
     std::lock_guard lock(line_m);
@@ -273,6 +300,7 @@ VerifyReport verify_case(const formulate::Formulation& f, const solve::CaseResul
                  std::chrono::duration<double>(now - t0).count());
   });
   VerifyReport report = conclude(f, std::move(clusters), result, options);
+  report.timed_out = timed_out;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;
 }

@@ -18,6 +18,9 @@ struct VerifyOptions {
   // Asked before each cluster: when it says so (a second interrupt), the clusters left are
   // reported unverified ("verification skipped") and the run ends at once.
   std::function<bool()> skip_rest;
+  // Seconds verification may take (0: no limit): clusters not begun by then are reported
+  // unverified ("verification skipped (time limit)"); the one under way finishes.
+  double time_limit = 0;
   int threads = 1;  // clusters verified in parallel; the report does not depend on it
   // A line on stderr each second of a verification that takes longer ("linkbox: verifying:
   // 12/32 clusters, 3.1 s"), as the search has.
@@ -39,6 +42,9 @@ std::vector<ClusterTask> cluster_tasks(const formulate::Formulation& formulation
                                        int threads = 1);
 ClusterReport verify_cluster(const formulate::Formulation& formulation, const ClusterTask& task,
                              const VerifyOptions& options);
+// The report of a cluster that verification did not reach: its boxes, hull and `why`.
+ClusterReport skipped_cluster(const formulate::Formulation& formulation, const ClusterTask& task,
+                              const std::string& why);
 // `clusters` in the order of cluster_tasks; report.seconds is left to the caller.
 VerifyReport conclude(const formulate::Formulation& formulation, std::vector<ClusterReport> clusters,
                       const solve::CaseResult& result, const VerifyOptions& options);

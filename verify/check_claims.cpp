@@ -123,6 +123,7 @@ const std::vector<TrustedField>& trusted_fields() {
       {"format", "read to parse the result"},
       {"linkbox", "the version that wrote the result"},
       {"verification.seconds", "a figure of the run"},
+      {"verification.timed_out", "the run's own account (its skipped clusters are unverified either way)"},
   };
   return fields;
 }

@@ -83,6 +83,7 @@ struct VerifyReport {
   // Domains the case left unbounded, bounded by default: every claim is within them.
   std::vector<std::string> assumed_bounds;
   bool exact = false;  // "exactly N roots in the domain" holds
+  bool timed_out = false;  // some cluster was skipped at VerifyOptions::time_limit
   std::string headline;
   double seconds = 0;
 };

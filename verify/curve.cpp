@@ -172,6 +172,7 @@ bool classify_curve(const formulate::Formulation& f, const std::vector<Box>& mem
   // precision (a root's enclosure stretches by eps / sigma_min): such clusters stay
   // unverified rather than be called curves.
   const bool long_cluster = c.boxes.size() >= 4 && max_width(c.hull) > 2 * box_width && max_width(c.hull) > 1e-6;
+  if (!long_cluster) return false;  // before the rank test: its SVDs are O(n^3)
   // Members are analysed in the cluster's chart when it holds the whole cluster, else
   // each in its own: a curve that winds around a whole turn (gimbal lock) fits no single
   // chart of half-angle tangents, but every small box does.
@@ -186,7 +187,7 @@ bool classify_curve(const formulate::Formulation& f, const std::vector<Box>& mem
     } catch (const std::exception&) {
     }
   }
-  if (!long_cluster || !rank_deficient) return false;
+  if (!rank_deficient) return false;
   // Called a curve only when a solution curve of the subsystem, on which the dropped
   // equation vanishes, crosses at least half of its boxes; a singular isolated root (a
   // double root, an ill-conditioned one) does not, and stays unverified.

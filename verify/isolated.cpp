@@ -213,8 +213,11 @@ void classify_inequalities(const formulate::NaturalSystem& sys, const Box& start
     c.reason = "root certified on an inequality's boundary (" + quoted(c.straddled[0]) +
                " is undecided on its certified box)";
   } else if (c.status == ClusterStatus::unverified) {
+    // A reason is read in one line: the first few names, then how many more.
+    constexpr size_t shown = 4;
     std::string list;
-    for (int k : c.straddled) list += (list.empty() ? "" : ", ") + quoted(k);
+    for (size_t k = 0; k < c.straddled.size() && k < shown; ++k) list += (list.empty() ? "" : ", ") + quoted(c.straddled[k]);
+    if (c.straddled.size() > shown) list += " and " + std::to_string(c.straddled.size() - shown) + " more";
     c.reason += (c.reason.empty() ? "" : "; ") + std::string("straddles ") + list;
   }
 }

@@ -32,6 +32,13 @@ std::string go_on(const SolveCommand& cmd, const formulate::LoadedCase& c, const
   return again;
 }
 
+// The run again with four times its time limits.
+std::string longer(const SolveCommand& cmd, const formulate::LoadedCase& c) {
+  const double t = cmd.options.params.time_limit, cpu = cmd.options.params.cpu_limit;
+  return "linkbox solve " + c.file + (t > 0 ? " --time-limit " + number(4 * t) : "") +
+         (cpu > 0 ? " --cpu-limit " + number(4 * cpu) : "") + " (with your other flags)";
+}
+
 bool any_reason(const verify::VerifyReport& v, const char* words) {
   for (auto& cl : v.clusters)
     if (cl.status == verify::ClusterStatus::unverified && cl.reason.find(words) != std::string::npos) return true;
@@ -69,6 +76,9 @@ int end_of_run(const SolveCommand& cmd, const formulate::LoadedCase& c, const so
   } else if (!r.complete) {
     code = exit_incomplete;
     next = go_on(cmd, c, r);
+  } else if (v && v->timed_out) {
+    code = exit_incomplete;
+    next = "verification reached its time limit (as long as the search's) with clusters left: " + longer(cmd, c);
   } else if (v && !v->exact) {
     code = exit_unresolved;
     next = settle(cmd, c, r, *v);

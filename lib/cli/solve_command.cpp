@@ -90,7 +90,8 @@ void add_search_flags(CLI::App& cmd, SolveCommand& s) {
 
 void add_run_flags(CLI::App& cmd, SolveCommand& s) {
   solve::RunOptions& o = s.options;
-  cmd.add_option("--time-limit", o.params.time_limit, "stop the search after SEC seconds, keeping what it proved (default 0: none)")
+  cmd.add_option("--time-limit", o.params.time_limit, "stop the search after SEC seconds, keeping what it proved; verification gets as long again "
+                 "(default 0: none)")
       ->check(number(0, false))
       ->type_name("SEC");
   cmd.add_option("--cpu-limit", o.params.cpu_limit,
@@ -242,6 +243,7 @@ int run_solve(SolveCommand& cmd, const RunMode& mode) {
 verify::VerifyOptions verify_options(const SolveCommand& cmd) {
   verify::VerifyOptions vo;
   vo.skip_rest = [] { return interrupts().load() >= 2; };
+  vo.time_limit = std::max(cmd.options.params.time_limit, cmd.options.params.cpu_limit);
   vo.threads = cmd.options.threads;
   vo.progress = !cmd.quiet;
   return vo;

@@ -300,8 +300,11 @@ Certificate certify_square(const SquareSystem& s, const Box& hull, const Box& do
 
   // 3. Tighten: every X <- K(X) ∩ X still holds the root; keep the last X that passes.
   // The image is often far tighter than what can pass in turn (it sits at the rounding
-  // limit), so candidates grow from it by factors of 4 until one passes.
-  for (int t = 0; t < o.tighten_steps && !tighten(s, o, p.c, p.x, p.step); ++t) {
+  // limit), so candidates grow from it by factors of 4 until one passes. A round that
+  // narrows X by less than a quarter is at that limit: later rounds move last digits only.
+  for (int t = 0; t < o.tighten_steps; ++t) {
+    const double before = max_width(p.x);
+    if (tighten(s, o, p.c, p.x, p.step) || max_width(p.x) > 0.75 * before) break;
   }
   cert.box = p.x;
   cert.image = p.step.image;

@@ -240,6 +240,7 @@ void add_verification(json& j, const formulate::Formulation& f, const verify::Ve
   j["headline"] = r.headline;
   j["verification"] = {{"certified_roots", r.certified_roots}, {"unverified", r.unverified}, {"curves", r.curves}, {"empty", r.empty},
                        {"exact", r.exact}, {"seconds", r.seconds}};
+  if (r.timed_out) j["verification"]["timed_out"] = true;
   if (r.curves) {
     // The curve clusters' maps, summed: components, and whether every one is proved.
     j["verification"]["map"] = {{"closed_curves", r.closed_curves},

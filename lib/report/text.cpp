@@ -52,7 +52,12 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
       std::fprintf(out, "model     %zu primary + %zu dummy variables; %zu linear, %zu parabolic, %zu hyperbolic equations\n",
                    sub.lph->primary.size(), sub.lph->variables.size() - sub.lph->primary.size(), sub.lph->linear.size(),
                    sub.lph->parabolic.size(), sub.lph->hyperbolic.size());
-  for (auto& note : f.model_notes()) std::fprintf(out, "model     %s\n", note.c_str());
+  // A lifted system of a thousand functions has as many notes: the first few, then a count.
+  const std::vector<std::string> notes = f.model_notes();
+  constexpr size_t kNotes = 12;
+  for (size_t k = 0; k < notes.size() && k < kNotes; ++k) std::fprintf(out, "model     %s\n", notes[k].c_str());
+  if (notes.size() > kNotes)
+    std::fprintf(out, "model     ... and %zu more notes (all in the JSON's model_notes)\n", notes.size() - kNotes);
   std::fprintf(out, "\n%-12s %10s %10s %10s %10s %10s %10s\n", "subproblems", "processed", "empty", "split", "solution",
                "search [s]", "wall [s]");
   std::fprintf(out, "%-12zu %10ld %10ld %10ld %10ld %10.3f %10.3f\n", r.subproblems.size(), r.total.processed,

@@ -43,6 +43,35 @@ equations = [ "x^2 + y^2 - 1", "x - y" ])");
   CHECK(v.certified_roots == 2);
 }
 
+TEST_CASE("verification stops at its time limit and says so", "[verify][polynomial]") {
+  formulate::LoadedCase c = formulate::load_case_text(R"(kind = "polynomial"
+name = "t"
+variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] } ]
+equations = [ "x^2 + y^2 - 1", "x - y" ])",
+                                                      "inline.toml");
+  solve::RunOptions o;
+  o.progress = false;
+  o.params.sigma = 1e-6;
+  const auto r = solve::solve_case(*c.formulation, o);
+  REQUIRE(r.complete);
+  verify::VerifyOptions vo;
+  vo.time_limit = 1e-12;  // spent before the first cluster
+  const auto cut = verify::verify_case(*c.formulation, r, vo);
+  CHECK(cut.timed_out);
+  CHECK_FALSE(cut.exact);
+  CHECK(cut.certified_roots == 0);
+  REQUIRE(cut.clusters.size() == 2);
+  for (auto& cl : cut.clusters) {
+    CHECK(cl.status == verify::ClusterStatus::unverified);
+    CHECK(cl.reason == "verification skipped (time limit)");
+  }
+  vo.time_limit = 600;
+  const auto whole = verify::verify_case(*c.formulation, r, vo);
+  CHECK_FALSE(whole.timed_out);
+  CHECK(whole.exact);
+  CHECK(whole.certified_roots == 2);
+}
+
 TEST_CASE("a double root is never certified", "[verify][polynomial]") {
   // The line y = 1 touches the circle at (0, 1).
   auto v = solve_text(R"(kind = "polynomial"
