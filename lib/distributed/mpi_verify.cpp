@@ -96,6 +96,8 @@ class Phase {
   size_t next_ = 0, received_ = 0;
   std::vector<int> held_;   // per rank: clusters sent, not yet reported
   std::vector<char> gone_;  // per rank: said goodbye
+  const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  bool timed_out_ = false;  // clusters not handed out by options_.time_limit were skipped
   Figures figures_;
 };
 
@@ -107,6 +109,12 @@ void Phase::dispatch() {
   if (options_.skip_rest && options_.skip_rest()) {
     // Interrupted twice: the clusters not handed out are reported skipped, here and now.
     for (; next_ < tasks_.size(); ++next_, ++received_) reports_[next_] = verify::verify_cluster(f_, tasks_[next_], options_);
+  }
+  if (options_.time_limit > 0 && next_ < tasks_.size() &&
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() > options_.time_limit) {
+    timed_out_ = true;
+    for (; next_ < tasks_.size(); ++next_, ++received_)
+      reports_[next_] = verify::skipped_cluster(f_, tasks_[next_], "time limit");
   }
   for (int r = 0; r < world_.size() && next_ < tasks_.size(); ++r) {
     json batch = json::array();
@@ -226,6 +234,7 @@ std::optional<verify::VerifyReport> Phase::run(const solve::CaseResult* result, 
   std::vector<verify::ClusterReport> clusters;
   for (auto& r : reports_) clusters.push_back(std::move(*r));
   verify::VerifyReport report = verify::conclude(f_, std::move(clusters), *result, options_);
+  report.timed_out = timed_out_;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   figures_.verify_traffic += wire_.traffic();
   if (figures) {
