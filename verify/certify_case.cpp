@@ -35,18 +35,6 @@ const char* to_string(ClusterStatus s) {
 
 namespace {
 
-// Shifts angle dimensions of `b` by whole turns towards `ref` (an exact set translation,
-// enclosed with a rigorous 2 pi).
-Box unwrap(const Box& b, const Box& ref, bool angles) {
-  if (!angles) return b;
-  Box r = b;
-  for (size_t i = 0; i < b.size(); ++i) {
-    const double turns = std::round((median(ref[i]) - median(b[i])) / (2 * M_PI));
-    if (turns != 0) r[i] += two_pi() * Interval(turns);
-  }
-  return r;
-}
-
 // Two clusters whose certified roots overlap are the same root when one certificate covers
 // both boxes (the later one is marked duplicate_of the first); otherwise both stay, and the
 // run is not exact. Returns the number of overlaps left unresolved.

@@ -7,6 +7,7 @@
 #include "verify/check_json.hpp"
 #include "verify/coupled_loops.hpp"
 #include "verify/cluster.hpp"
+#include "verify/exact_point.hpp"
 #include "verify/isolated.hpp"
 
 #include <nlohmann/json.hpp>
@@ -33,18 +34,6 @@ std::optional<Box> carried(Map&& map) {
   } catch (const std::exception&) {
     return std::nullopt;
   }
-}
-
-// The shift of each angle side by whole turns that brings `b` nearest `ref` (as clustering
-// unwraps a cluster's boxes); `b` unchanged when outputs are not angles.
-Box unwrapped(const Box& b, const Box& ref, bool angles) {
-  if (!angles || b.size() != ref.size()) return b;
-  Box r = b;
-  for (size_t i = 0; i < b.size(); ++i) {
-    const double turns = std::round((median(ref[i]) - median(b[i])) / (2 * M_PI));
-    if (turns != 0) r[i] += two_pi() * Interval(turns);
-  }
-  return r;
 }
 
 // Whether `hull` covers `b`, angle sides modulo whole turns.
@@ -178,20 +167,21 @@ class Checker {
     check_root(k, sys, cert, *image);
   }
 
-  // What a certified cluster claims of its root, on the certified box: the reported root
-  // encloses it, the inequalities hold there, and no other root is in the hull when claimed.
+  // What a certified cluster claims of its root, on the certified box (or at its exact root):
+  // the reported root encloses it, the inequalities hold, no other root is in the hull if claimed.
   void check_root(const Entry& k, const formulate::NaturalSystem& sys, const newton::Certificate& cert,
                   const Box& image) {
     const json& cj = k.c.at("certificate");
     const auto root = carried([&] { return f_.natural_to_output(k.chart, cert.box); });
     if (!root || !encloses(box_from(k.c.at("root")), *root))
       out_.failures.push_back(k.where + ": the reported root box does not enclose the certified box");
-    // A certified root must satisfy every inequality on its certified box.
+    const std::vector<std::string> exact = exact_root(k, sys, image);
     for (auto& q : sys.inequalities)
-      if (model::side_of(q, cert.box) != model::Side::inside)
+      if (side_of_root(q, cert.box, exact) != model::Side::inside)
         out_.failures.push_back(k.where + ": the certified root is not proved to satisfy \"" + q.name + "\"");
-    if (!sys.domain.empty() && cj.value("root_in_domain", false) && !encloses(sys.domain, image))
-      out_.failures.push_back(k.where + ": root claimed in the domain but its image is not");
+    if (!sys.domain.empty() && cj.value("root_in_domain", false) && !encloses(sys.domain, image) &&
+        !(exact.size() && rationals_in(exact, sys.domain)))
+      out_.failures.push_back(k.where + ": root claimed in the domain but neither its image nor exact root is");
     // "No other root in the cluster" is what makes a count exact: re-proved, not read.
     if (cj.value("unique_in_hull", false) && !k.c.contains("argument")) {
       const auto start = carried([&] { return f_.output_to_natural(k.chart, k.hull); });
@@ -200,6 +190,14 @@ class Checker {
     }
     if (!k.c.contains("duplicate_of")) ++certified_;
     else duplicates_.push_back(k.index);
+  }
+
+  // The cluster's exact root, when it states one that holds (a failure when it does not).
+  std::vector<std::string> exact_root(const Entry& k, const formulate::NaturalSystem& sys, const std::optional<Box>& image) {
+    const auto p = k.c.value("exact_root", std::vector<std::string>{});
+    if (p.empty() || (image && sys.links.empty() && exact_root_in(sys.equations, p, *image))) return p;
+    out_.failures.push_back(k.where + ": its exact root is not a root in its certified image");
+    return {};
   }
 
   // Certified through its loops (verify/coupled_loops.hpp): its square subsystem's root is
@@ -252,9 +250,10 @@ class Checker {
     ++out_.checked;
     const json& c = k.c;
     const newton::Certificate cert = certificate_from(c.at("certificate"));
+    const auto exact = exact_root(k, sys, proved_image(sys, cert));
     bool holds = cert.box.size() == sys.unknowns.size() &&
                  std::any_of(sys.inequalities.begin(), sys.inequalities.end(),
-                             [&](auto& q) { return model::side_of(q, cert.box) == model::Side::outside; });
+                             [&](auto& q) { return side_of_root(q, cert.box, exact) == model::Side::outside; });
     const auto start = carried([&] { return f_.output_to_natural(k.chart, k.hull); });
     if (c.at("certificate").at("status") == "certified")
       holds = holds && c.at("certificate").value("unique_in_hull", false) &&
@@ -288,7 +287,7 @@ class Checker {
     std::vector<Box> boxes;
     for (auto& m : k.c.at("members")) {
       auto it = solutions_.find({m.at(0).get<size_t>(), m.at(1).get<size_t>()});
-      if (it != solutions_.end()) boxes.push_back(boxes.empty() ? it->second : unwrapped(it->second, boxes[0], angles_));
+      if (it != solutions_.end()) boxes.push_back(boxes.empty() ? it->second : unwrap(it->second, boxes[0], angles_));
     }
     return boxes;
   }
@@ -417,7 +416,7 @@ class Checker {
         const Box root = box_from(first.at("root")), other = box_from(b.at("root"));
         if (chart_exists(chart) && root.size() == outputs_ && other.size() == outputs_) {
           const auto& sys = f_.natural(chart);
-          const auto mapped = carried([&] { return f_.output_to_natural(chart, unwrapped(other, root, angles_)); });
+          const auto mapped = carried([&] { return f_.output_to_natural(chart, unwrap(other, root, angles_)); });
           if (mapped && mapped->size() == cert.box.size()) {
             const newton::Certificate both = certify_natural(sys, linkbox::hull(cert.box, *mapped));
             proved = both.status == newton::Status::certified && both.unique_in_hull;

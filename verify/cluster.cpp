@@ -114,6 +114,16 @@ Interval two_pi() {
   return value;
 }
 
+Box unwrap(const Box& b, const Box& ref, bool angles) {
+  if (!angles || b.size() != ref.size()) return b;
+  Box r = b;
+  for (size_t i = 0; i < b.size(); ++i) {
+    const double turns = std::round((median(ref[i]) - median(b[i])) / (2 * M_PI));
+    if (turns != 0) r[i] += two_pi() * Interval(turns);
+  }
+  return r;
+}
+
 bool boxes_touch(const Box& a, const Box& b, const std::vector<bool>& periodic) {
   if (a.size() != b.size()) return false;
   for (size_t d = 0; d < a.size(); ++d) {

@@ -11,6 +11,11 @@ namespace linkbox::verify {
 // Rigorous enclosure of 2*pi, the period of angle dimensions.
 Interval two_pi();
 
+// `b` with each angle side shifted by the whole turns that bring it nearest `ref` (an exact
+// translation, enclosed with two_pi()), as a cluster's boxes are unwrapped; `b` itself when
+// the sides are not angles or the sizes differ.
+Box unwrap(const Box& b, const Box& ref, bool angles);
+
 // Whether the closures of `a` and `b` touch or overlap. In a dimension flagged periodic
 // (empty `periodic` = none) the test is modulo 2*pi, so a box ending at +pi touches one
 // starting at -pi. Conservative there: the boxes are said to touch unless they are apart

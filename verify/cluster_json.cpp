@@ -109,6 +109,7 @@ json report_json(const ClusterReport& c) {
           {"duplicate_of", c.duplicate_of},
           {"inequality", c.inequality},
           {"straddled", c.straddled},
+          {"exact_root", c.exact_root},
           {"max_residual", exact_json(c.max_residual)},
           {"distances", doubles_json(c.distances)},
           {"max_distance", exact_json(c.max_distance)},
@@ -140,6 +141,7 @@ ClusterReport report_from(const json& j) {
   c.duplicate_of = j.at("duplicate_of");
   c.inequality = j.at("inequality");
   c.straddled = j.at("straddled").get<std::vector<int>>();
+  c.exact_root = j.at("exact_root").get<std::vector<std::string>>();
   c.max_residual = exact_double(j.at("max_residual"));
   c.distances = doubles_from(j.at("distances"));
   c.max_distance = exact_double(j.at("max_distance"));

@@ -54,6 +54,10 @@ struct ClusterReport {
   // (its certified root when certified, else its hull) leaves undecided.
   int inequality = -1;
   std::vector<int> straddled;
+  // Certified: the root as an exact rational point (verify/exact_point.hpp), when the
+  // certified box holds one that every equation vanishes at; the domain and the inequalities
+  // its enclosure leaves undecided are decided there.
+  std::vector<std::string> exact_root;
   // Upper bounds: the largest rigorous residual max_i |f_i(midpoint)| of a member box in its
   // sub-problem's system; for a certified cluster, per member (same order as `boxes`) the
   // farthest distance (max norm, output variables, angles modulo 2 pi) from a point of the

@@ -1,6 +1,7 @@
 #include "verify/exact_point.hpp"
 
 #include <boost/multiprecision/gmp.hpp>
+#include <mpfi.h>
 
 #include <cmath>
 
@@ -93,6 +94,73 @@ std::vector<Vec> null_space(Mat a, size_t cols) {
   return basis;
 }
 
+std::optional<Vec> parse_all(const std::vector<std::string>& point) {
+  Vec x;
+  for (auto& s : point) {
+    auto q = parse(s);
+    if (!q) return std::nullopt;
+    x.push_back(*q);
+  }
+  return x;
+}
+
+bool zero_at(const std::vector<model::Polynomial>& f, const Vec& x) {
+  for (auto& e : f) {
+    auto value = eval(e, x);
+    if (!value || *value != 0) return false;
+  }
+  return !f.empty();
+}
+
+// An MPFI interval at `bits` of precision, cleared on exit.
+struct Mpfi {
+  mpfi_t v;
+  explicit Mpfi(mpfr_prec_t bits) { mpfi_init2(v, bits); }
+  ~Mpfi() { mpfi_clear(v); }
+  Mpfi(const Mpfi&) = delete;
+  Mpfi& operator=(const Mpfi&) = delete;
+};
+
+// Whether the angle of (c, s) (c^2 + s^2 = 1), as theta + 2 k pi for some k, lies in [lo, hi]:
+// decided at `bits` of precision, or none.
+std::optional<model::Side> angle_side(const Q& c, const Q& s, double lo, double hi, mpfr_prec_t bits) {
+  Mpfi qc(bits), qs(bits), theta(bits), turn(bits), t(bits);
+  mpfi_set_q(qc.v, c.backend().data());
+  mpfi_set_q(qs.v, s.backend().data());
+  mpfi_atan2(theta.v, qs.v, qc.v);  // in [-pi, pi]
+  mpfi_const_pi(turn.v);
+  mpfi_mul_ui(turn.v, turn.v, 2);
+  // Every k with [2 k pi - pi, 2 k pi + pi] meeting [lo, hi], and one more each way.
+  const long first = std::lround(std::floor(lo / 6.2831853)) - 2, last = std::lround(std::ceil(hi / 6.2831853)) + 2;
+  bool undecided = false;
+  for (long k = first; k <= last; ++k) {
+    mpfi_mul_si(t.v, turn.v, k);
+    mpfi_add(t.v, t.v, theta.v);
+    if (mpfi_nan_p(t.v)) return std::nullopt;
+    mpfr_t l, r;
+    mpfr_inits2(bits, l, r, static_cast<mpfr_ptr>(nullptr));
+    mpfi_get_left(l, t.v);
+    mpfi_get_right(r, t.v);
+    const bool inside = mpfr_cmp_d(l, lo) >= 0 && mpfr_cmp_d(r, hi) <= 0;
+    const bool apart = mpfr_cmp_d(r, lo) < 0 || mpfr_cmp_d(l, hi) > 0;
+    mpfr_clears(l, r, static_cast<mpfr_ptr>(nullptr));
+    if (inside) return model::Side::inside;
+    undecided = undecided || !apart;
+  }
+  if (undecided) return std::nullopt;
+  return model::Side::outside;
+}
+
+model::Side exact_arc_side(const model::Inequality::Arc& a, const Vec& x) {
+  if (a.c < 0 || a.s < 0 || static_cast<size_t>(std::max(a.c, a.s)) >= x.size()) return model::Side::boundary;
+  const Q &c = x[a.c], &s = x[a.s];
+  const double lo = a.domain.lower(), hi = a.domain.upper();
+  if (c * c + s * s != 1 || !std::isfinite(lo) || !std::isfinite(hi)) return model::Side::boundary;
+  for (mpfr_prec_t bits : {256, 4096})
+    if (auto side = angle_side(c, s, lo, hi, bits)) return *side;
+  return model::Side::boundary;
+}
+
 }  // namespace
 
 const char* to_string(SingularKind k) {
@@ -153,6 +221,51 @@ std::optional<SingularKind> exact_singular_kind(const std::vector<model::Polynom
   }
   const Q det = form[0][0] * form[1][1] - form[0][1] * form[1][0];
   return det < 0 ? SingularKind::crossing : det > 0 ? SingularKind::isolated : SingularKind::degenerate;
+}
+
+}  // namespace linkbox::verify
+
+namespace linkbox::verify {
+
+std::optional<std::vector<std::string>> exact_zero_in(const std::vector<model::Polynomial>& f, const Box& box) {
+  std::vector<std::string> point;
+  for (auto& side : box) {
+    auto q = simplest_rational(side.lower(), side.upper());
+    if (!q) return std::nullopt;
+    point.push_back(*q);
+  }
+  if (!exact_zero(f, point)) return std::nullopt;
+  return point;
+}
+
+bool exact_zero(const std::vector<model::Polynomial>& f, const std::vector<std::string>& point) {
+  const auto x = parse_all(point);
+  return x && zero_at(f, *x);
+}
+
+bool rationals_in(const std::vector<std::string>& point, const Box& box) {
+  if (point.size() != box.size()) return false;
+  for (size_t i = 0; i < box.size(); ++i)
+    if (!rational_in(point[i], box[i])) return false;
+  return true;
+}
+
+bool exact_root_in(const std::vector<model::Polynomial>& f, const std::vector<std::string>& point, const Box& box) {
+  return rationals_in(point, box) && exact_zero(f, point);
+}
+
+model::Side exact_side(const model::Inequality& c, const std::vector<std::string>& point) {
+  const auto x = parse_all(point);
+  if (!x) return model::Side::boundary;
+  if (c.arc && !c.strict) return exact_arc_side(*c.arc, *x);
+  const auto g = eval(c.g, *x);
+  if (!g) return model::Side::boundary;
+  return (c.strict ? *g < 0 : *g <= 0) ? model::Side::inside : model::Side::outside;
+}
+
+model::Side side_of_root(const model::Inequality& c, const Box& box, const std::vector<std::string>& exact) {
+  const model::Side side = model::side_of(c, box);
+  return side == model::Side::boundary && !exact.empty() ? exact_side(c, exact) : side;
 }
 
 }  // namespace linkbox::verify

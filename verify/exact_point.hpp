@@ -31,4 +31,28 @@ std::optional<SingularKind> exact_singular_kind(const std::vector<model::Polynom
 // The rational `text` (as above) lies in `x` (exact comparison); false when malformed.
 bool rational_in(const std::string& text, const Interval& x);
 
+// Exact roots. A certified root's box may hold a rational point (the simplest rational in
+// each side) where every equation, its coefficients points, is exactly zero: that point is
+// the root, the only one in the box. Where it lies is then decided exactly, also on a face of
+// the domain or on an inequality's boundary, where enclosures cannot tell.
+
+// That point of `box`, one rational per unknown; none when some equation is not exactly 0.
+std::optional<std::vector<std::string>> exact_zero_in(const std::vector<model::Polynomial>& f, const Box& box);
+// Whether every equation of `f` is exactly 0 at `point`.
+bool exact_zero(const std::vector<model::Polynomial>& f, const std::vector<std::string>& point);
+// Whether `point` lies in `box` (exact comparisons).
+bool rationals_in(const std::vector<std::string>& point, const Box& box);
+// Both: `point` is a root of `f` in `box` (with a certificate's image, the root there).
+bool exact_root_in(const std::vector<model::Polynomial>& f, const std::vector<std::string>& point, const Box& box);
+// The side of `c` at `point`: a polynomial inequality by the exact sign of g (point
+// coefficients; otherwise boundary), an angle's domain arc by the point's angle theta on the
+// unit circle. theta + 2 k pi is never a double unless it is 0 (at (1, 0), theta = 0 exactly;
+// at any other rational point of the circle e^{i theta} is algebraic with theta != 0, so by
+// Lindemann-Weierstrass theta + 2 k pi is transcendental), so an enclosure at high enough
+// precision decides it against the domain's ends, and 0 is compared exactly.
+model::Side exact_side(const model::Inequality& c, const std::vector<std::string>& point);
+// The side of `c` on a certified root's box, or, where that is undecided, at its exact root
+// (none: empty).
+model::Side side_of_root(const model::Inequality& c, const Box& box, const std::vector<std::string>& exact);
+
 }  // namespace linkbox::verify

@@ -1,5 +1,7 @@
 #include "verify/isolated.hpp"
 
+#include "verify/exact_point.hpp"
+
 #include "newton/float_system.hpp"
 #include "verify/check_proofs.hpp"
 #include "verify/cluster.hpp"
@@ -110,6 +112,14 @@ void examine_not_square(const formulate::NaturalSystem& sys, const Box& start, C
   }
 }
 
+// Sets c.exact_root, if not yet set, from the certified image; whether it is set. Links
+// (y = f(a)) have no exact values at rationals, so only polynomial systems have exact roots.
+bool find_exact_root(const formulate::NaturalSystem& sys, ClusterReport& c) {
+  if (c.exact_root.empty() && sys.links.empty() && c.certificate.status == newton::Status::certified)
+    if (auto p = exact_zero_in(sys.equations, c.certificate.image)) c.exact_root = std::move(*p);
+  return !c.exact_root.empty();
+}
+
 }  // namespace
 
 void accept_root(const formulate::Formulation& f, const std::vector<Box>& members, const std::vector<bool>& periodic,
@@ -163,6 +173,9 @@ void certify_isolated(const formulate::Formulation& f, const formulate::NaturalS
     return;
   }
   c.certificate = newton::certify_root(newton::SquareSystem::all_unknown(sys.compiled), start, sys.domain, options);
+  if (c.certificate.status == newton::Status::certified && !c.certificate.root_in_domain && !sys.domain.empty() &&
+      find_exact_root(sys, c) && rationals_in(c.exact_root, sys.domain))
+    c.certificate.root_in_domain = true;
   if (c.certificate.status == newton::Status::certified && !c.certificate.root_in_domain && !sys.domain.empty()) {
     c.reason = "root on the domain boundary: certified in a slightly enlarged domain only";
   } else if (c.certificate.status == newton::Status::certified) {
@@ -184,7 +197,8 @@ void classify_inequalities(const formulate::NaturalSystem& sys, const Box& start
   const Box& where = certified ? c.certificate.box : start;
   int outside = -1;
   for (size_t k = 0; k < ineqs.size(); ++k) {
-    const model::Side side = model::side_of(ineqs[k], where);
+    model::Side side = model::side_of(ineqs[k], where);
+    if (side == model::Side::boundary && certified && find_exact_root(sys, c)) side = exact_side(ineqs[k], c.exact_root);
     if (side == model::Side::boundary) c.straddled.push_back(static_cast<int>(k));
     if (side == model::Side::outside && outside < 0) outside = static_cast<int>(k);
   }

@@ -424,7 +424,7 @@ std::string Lifter::add_circle(const Lifting::Angle& a) {
     Inequality arc;
     arc.g = Polynomial::constant(rigorous::cos(h)) - c * rigorous::cos(m) - s * rigorous::sin(m);
     arc.name = "domain of " + t;
-    arc.arc = Inequality::Arc{a.c, a.s, rigorous::cos(m), rigorous::sin(m), h};
+    arc.arc = Inequality::Arc{a.c, a.s, rigorous::cos(m), rigorous::sin(m), h, a.domain};
     out_.inequalities.push_back(std::move(arc));
     note += " (its domain, less than a turn, as the inequality \"domain of " + t + "\")";
   } else if (a.full_turn) {

@@ -77,6 +77,7 @@ struct Inequality {
   struct Arc {
     int c = -1, s = -1;
     Interval cos_centre, sin_centre, half;  // half < pi
+    Interval domain;  // the angle's domain [lo, hi] itself, its ends exact doubles
   };
   std::optional<Arc> arc = std::nullopt;
 };

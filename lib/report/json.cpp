@@ -215,6 +215,7 @@ json cluster_json(const formulate::Formulation& f, const verify::ClusterReport& 
     if (!c.subsystem.empty()) cj["subsystem"] = c.subsystem;
     if (!c.argument.empty()) cj["argument"] = c.argument;
     if (c.excluding_equation >= 0) cj["excluding_equation"] = c.excluding_equation;
+    if (!c.exact_root.empty()) cj["exact_root"] = c.exact_root;
   }
   if (c.status == verify::ClusterStatus::curve) {
     json xs = json::array();

@@ -67,14 +67,18 @@ TEST_CASE("x/(x - 1) + y = 0 with y = 0: the root x = 0, the divisor cleared", "
 TEST_CASE("a root of the cleared equation where the divisor is 0 is never certified", "[divisions]") {
   // (6x - 2)/(3x - 1) = 2 for x != 1/3, so (6x - 2)/(3x - 1) = 1 has no real root. Cleared it
   // is 3x - 1 = 0, whose simple root 1/3 (not a double) interval Newton proves in a box where
-  // 3x - 1 holds 0: the divisor's inequality is what keeps it from being counted.
+  // 3x - 1 holds 0: the divisor's inequality is what keeps it from being counted. Its exact
+  // point 1/3 (verify/exact_point.hpp) shows it violates that inequality: none, exactly.
   const auto simple = solve_text(polynomial_case(R"~({ name = "x", domain = [0, 1] })~", R"~("(6*x - 2)/(3*x - 1) = 1")~"));
   CHECK(simple.roots.empty());
   CHECK(certified_clusters(simple) == 0);
-  bool boundary = false;
-  for (auto& cl : simple.v.clusters) boundary = boundary || cl.reason.find("inequality's boundary") != std::string::npos;
-  CHECK(boundary);
-  CHECK(simple.v.headline.find("1 root") == std::string::npos);
+  bool violates = false;
+  for (auto& cl : simple.v.clusters)
+    violates = violates || (cl.status == verify::ClusterStatus::infeasible && cl.exact_root == std::vector<std::string>{"1/3"});
+  CHECK(violates);
+  CHECK(simple.v.exact);
+  CHECK(simple.v.headline.find("exactly 0 roots") != std::string::npos);
+  CHECK(verify::check_certificates(simple.j, *simple.c.formulation).failures.empty());
 
   // (x^2 - x)/(x - 1) = x for x != 1, so = 1 has no real root either; cleared: (x - 1)^2 = 0.
   const auto twice = solve_text(polynomial_case(R"~({ name = "x", domain = [0, 2] })~", R"~("(x^2 - x)/(x - 1) = 1")~"));

@@ -373,7 +373,8 @@ TEST_CASE("the arc's side by the angle never contradicts the angle", "[inequalit
     model::Inequality q;
     q.g = Polynomial::constant(rigorous::cos(Interval(h))) - Polynomial::variable(0) * rigorous::cos(Interval(m)) -
           Polynomial::variable(1) * rigorous::sin(Interval(m));
-    q.arc = model::Inequality::Arc{0, 1, rigorous::cos(Interval(m)), rigorous::sin(Interval(m)), Interval(h)};
+    q.arc = model::Inequality::Arc{0, 1, rigorous::cos(Interval(m)), rigorous::sin(Interval(m)), Interval(h),
+                                   Interval(m) + Interval(-h, h)};
     const Interval u = Interval(m) + Interval(phi);
     const Interval pad(-1e-13, 1e-13);
     const model::Side side = model::side_of(q, {rigorous::cos(u) + pad, rigorous::sin(u) + pad});
@@ -382,4 +383,36 @@ TEST_CASE("the arc's side by the angle never contradicts the angle", "[inequalit
     decided += side != model::Side::boundary;
   }
   CHECK(decided > 15000);
+}
+
+TEST_CASE("a root exactly on an angle's domain end is proved there by its exact point", "[inequalities][verify]") {
+  // sin(t) = 0 at t = 0 and 2 pi: on a domain's ends, where the certified box straddles the
+  // end. Lifted, the root is the rational point (1, 0), every equation exactly 0 there, so its
+  // angle is exactly 0 (mod 2 pi) and the end decides. 2 pi's upper enclosure lies above 2 pi.
+  const auto run = [](const std::string& domain) {
+    return solve_text("kind = \"polynomial\"\nname = \"t\"\nvariables = [ { name = \"t\", domain = " + domain +
+                      " } ]\nequations = [ \"sin(t)\" ]\n");
+  };
+  for (const char* domain : {"[0, 3]", "[-3, 0]", "[\"0.5\", \"2*pi\"]", "[0, \"2*pi - 1e-3\"]"}) {
+    INFO(domain);
+    Run r = run(domain);
+    CHECK(r.v.exact);
+    CHECK(r.v.unverified == 0);
+    bool exact_point = false;
+    for (auto& cl : r.v.clusters) exact_point = exact_point || cl.exact_root == std::vector<std::string>{"1", "0"};
+    CHECK(exact_point);
+    CHECK(check(r).empty());
+    // A stated exact root that is not the root is caught.
+    for (auto& cj : r.j.at("clusters"))
+      if (cj.contains("exact_root")) cj["exact_root"] = {"3/5", "4/5"};
+    CHECK_FALSE(check(r).empty());
+  }
+  CHECK(run("[0, 3]").roots.size() == 1);
+  CHECK(run("[\"0.5\", \"2*pi\"]").roots.size() == 2);  // pi and 2 pi
+  CHECK(run("[0, \"2*pi - 1e-3\"]").roots.size() == 2);  // 0 and pi
+  // A domain that ends a rounding short of 2 pi leaves that root outside.
+  Run short_of = run("[0.5, 6.283185307179586]");
+  CHECK(short_of.v.exact);
+  CHECK(short_of.roots.size() == 1);
+  CHECK(check(short_of).empty());
 }

@@ -88,12 +88,23 @@ equations = [ "x^2 + y^2 - 1", "y - 1" ])");
 }
 
 TEST_CASE("a root on the edge of the domain is reported as such, not counted", "[verify][polynomial]") {
-  // Roots (1/sqrt2, 1/sqrt2) inside and (1, 0)... : x^2 + y^2 = 1 with y = 0 has x = 1 on
-  // the domain's edge x <= 1, and x = -1 inside.
-  auto v = solve_text(R"(kind = "polynomial"
+  // x^2 + y^2 = 1 with y = 0 has x = 1 on the domain's edge x <= 1, and x = -1 inside: the
+  // edge root is the rational point (1, 0), in the domain exactly (verify/exact_point.hpp).
+  verify::CheckOutcome checked;
+  auto rational = solve_text(R"(kind = "polynomial"
 name = "t"
 variables = [ { name = "x", domain = [-2, 1] }, { name = "y", domain = [-1, 1] } ]
-equations = [ "x^2 + y^2 - 1", "y" ])");
+equations = [ "x^2 + y^2 - 1", "y" ])",
+                             "hc4,newton", 1e-6, &checked);
+  CHECK(rational.certified_roots == 2);
+  CHECK(rational.exact);
+  CHECK(checked.failures.empty());
+  // x^2 + y^2 = 3 with y^2 = 2: the edge root (1, sqrt 2) is not rational, so nothing decides
+  // its side; (-1, sqrt 2) is inside.
+  auto v = solve_text(R"(kind = "polynomial"
+name = "t"
+variables = [ { name = "x", domain = [-2, 1] }, { name = "y", domain = [0, 2] } ]
+equations = [ "x^2 + y^2 - 3", "y^2 - 2" ])");
   CHECK(v.certified_roots == 1);
   CHECK_FALSE(v.exact);
   int edge = 0;
