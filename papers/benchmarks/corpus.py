@@ -38,16 +38,19 @@ NOTES = {
     "non-polynom/Trigo1-0012.bch": OUTSIDE + " (IbexSolve stopped at its limit).",
     "non-polynom/Trigo1-0014.bch": OUTSIDE + " (IbexSolve stopped at its limit).",
     "non-polynom/Trigo1-0100sp.bch": (
-        "domain [0.1, 2*pi]: the only root, every x_i = 2*pi, lies on the domain's edge; neither tool "
-        "certifies a root on the edge (IbexSolve calls its box 'unknown')."),
+        "domain [0.1, 2*pi]: the only root, every x_i = 2*pi, lies on the domain's edge; IbexSolve calls "
+        "its box 'unknown'. linkbox certifies it (since d18359d): lifted, it is the rational point "
+        "c_i = 1, s_i = 0, SE = -100, where every equation is exactly 0, and its angle 2*pi lies inside "
+        "the domain's outward upper end (docs/verification.md, exact roots)."),
     "non-polynom/Trigonometric-05.bch": (
-        "domain [0, 2*pi-1e-3]: 10 of the roots have some x_i = 0, on the domain's edge; neither tool "
-        "certifies a root on the edge (IbexSolve calls their boxes 'unknown')."),
+        "domain [0, 2*pi-1e-3]: 10 of the 32 roots have some x_i = 0, on the domain's edge; IbexSolve "
+        "calls their boxes 'unknown'. linkbox certifies them at their exact points (since d18359d: "
+        "each x_i is 0 or pi/2, so (cos, sin) is (1, 0) or (0, 1), rational)."),
     "non-polynom/Trigo1-1000sp.bch": (
-        "linkbox ended its search in 8.8 s with one solution box (every x_i = 2*pi, on the domain's "
-        "edge, as in Trigo1-0100sp), then certifying it in 2001 unknowns did not end before the "
-        "harness killed it at 46 s wall; its CPU time was lost with the killed wrapper. IbexSolve's "
-        "set-up of the 1000 unknowns did not end either."),
+        "linkbox's search ends at the limit with one solution box (every x_i = 2*pi, as in "
+        "Trigo1-0100sp); certifying it in 2001 unknowns took minutes until c8d533c (30 tightening "
+        "rounds at 0.5 s, an SVD of the 2001 x 2001 Jacobian), about 7 s since. IbexSolve's set-up "
+        "of the 1000 unknowns does not end before the harness's hard limit."),
 }
 EDGE = ("finished in 7.4-7.6 CPU s in the 2026-11-26 run; on 2026-11-28, with other work on the "
         "machine, the same search (same strategy, same boxes) needs 8.0-9.3 s, past the limit.")
