@@ -196,9 +196,14 @@ void classify_inequalities(const formulate::NaturalSystem& sys, const Box& start
   // Where the cluster's roots are: the certified box (exactly one root), else the hull.
   const Box& where = certified ? c.certificate.box : start;
   int outside = -1;
+  bool exact_tried = false;  // an exact root is looked for once, at the first undecided side
   for (size_t k = 0; k < ineqs.size(); ++k) {
     model::Side side = model::side_of(ineqs[k], where);
-    if (side == model::Side::boundary && certified && find_exact_root(sys, c)) side = exact_side(ineqs[k], c.exact_root);
+    if (side == model::Side::boundary && certified) {
+      if (!exact_tried) find_exact_root(sys, c);
+      exact_tried = true;
+      if (!c.exact_root.empty()) side = exact_side(ineqs[k], c.exact_root);
+    }
     if (side == model::Side::boundary) c.straddled.push_back(static_cast<int>(k));
     if (side == model::Side::outside && outside < 0) outside = static_cast<int>(k);
   }
