@@ -96,7 +96,8 @@ void add_run_flags(CLI::App& cmd, SolveCommand& s) {
       ->type_name("SEC");
   cmd.add_option("--cpu-limit", o.params.cpu_limit,
                  "stop the search after SEC seconds of the process's CPU time (all threads), keeping what it "
-                 "proved: a limit that a loaded machine does not shorten (default 0: none)")
+                 "proved: a limit that a loaded machine does not shorten; verification gets as long again, in wall "
+                 "seconds (default 0: none)")
       ->check(number(0, false))
       ->type_name("SEC");
   cmd.add_option("--max-boxes", o.params.max_boxes, "stop the search after N processed boxes (default 0: none)")
