@@ -14,7 +14,9 @@ Outcome Counted::contract(Box& box) {
   Box before = box;
   Counters work_before;
   inner_->add_work(work_before);
+  started_ = work_before.operations;
   Outcome o = inner_->contract(box);
+  started_ = -1;
   Counters work;
   inner_->add_work(work);
   Counters& c = counters_;
@@ -32,6 +34,13 @@ Outcome Counted::contract(Box& box) {
     c.volume_removed += 1 - volume_ratio(before, box, dims_);
   }
   return o;
+}
+
+double Counted::live_operations() const {
+  if (started_ < 0) return counters_.operations;
+  Counters now;
+  inner_->add_work(now);
+  return counters_.operations + now.operations - started_;
 }
 
 }  // namespace linkbox::prune

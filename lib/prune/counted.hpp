@@ -21,12 +21,15 @@ class Counted final : public Contractor {
   void add_work(Counters& counters) const override { inner_->add_work(counters); }
 
   const Counters& counters() const { return counters_; }
+  // The operations counted so far, the call under way included (its LPs so far).
+  double live_operations() const;
   void set_counters(const Counters& counters) { counters_ = counters; }
 
  private:
   std::unique_ptr<Contractor> inner_;
   std::vector<int> dims_;
   Counters counters_;
+  double started_ = -1;  // inside contract(): the inner contractor's operations at its start
 };
 
 }  // namespace linkbox::prune

@@ -48,6 +48,12 @@ double Sequence::operations() const {
   return n;
 }
 
+double Sequence::live_operations() const {
+  double n = 0;
+  for (const Counted* m : members_) n += m->live_operations();
+  return n;
+}
+
 std::vector<Counters> Sequence::counters() const {
   std::vector<Counters> c;
   for (const Counted* m : members_) c.push_back(m->counters());

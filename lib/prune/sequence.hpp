@@ -32,6 +32,7 @@ class Sequence final : public Contractor {
   void set_operations_per_box(double operations) { operations_per_box_ = operations; }
   double operations_per_box() const { return operations_per_box_; }
   double operations() const;  // the members' counters' operations, summed
+  double live_operations() const;  // the same, with the call under way (Counted::live_operations)
 
   // Passes that stalled (Staged::stalls), counted apart from the counters: a box cut short
   // keeps them.

@@ -15,9 +15,10 @@ constexpr double kRaceShare = 0.125;
 constexpr double kFirstTurn = 4000;
 // In the first round a box may cost at most this: a candidate whose first box costs a hundred
 // times the others' whole share (an LP over a large lifted system) would otherwise spend it
-// before any candidate is compared. A capped box is shrunk again, uncapped, next round; its
-// work up to the cap is lost (the counts leave it out). Caps only ever grow (first round,
-// then none), so a box is capped in a look-ahead exactly when one thread would cap it.
+// before any candidate is compared. The cap holds within a pass too (between its LPs), so one
+// pass over a large relaxation cannot overrun it. A capped box is shrunk again, uncapped, next
+// round; its work up to the cap is lost (the counts leave it out). Caps only ever grow (first
+// round, then none), so a box is capped in a look-ahead exactly when one thread would cap it.
 constexpr double kFirstRoundBoxCap = kFirstTurn;
 
 std::string number(double x) {

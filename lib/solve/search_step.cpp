@@ -12,6 +12,25 @@ namespace linkbox::solve::detail {
 
 namespace {
 
+// The contractor asks `during` between its costly steps while in scope, then `after` again.
+class StopScope {
+ public:
+  StopScope(prune::Sequence& c, const std::function<bool()>* during, const std::function<bool()>* after)
+      : c_(c), after_(after), set_(during != nullptr) {
+    if (set_) c_.stop_when(during);
+  }
+  ~StopScope() {
+    if (set_) c_.stop_when(after_);
+  }
+  StopScope(const StopScope&) = delete;
+  StopScope& operator=(const StopScope&) = delete;
+
+ private:
+  prune::Sequence& c_;
+  const std::function<bool()>* after_;
+  bool set_;
+};
+
 // Shrinks until empty, certified, small, or no longer shrinking by more than rho.
 // `stop` is asked between passes too: one box can take many passes (see
 // papers/decisions/search.md, "NaN bounds").
@@ -19,6 +38,14 @@ Verdict shrink(Box& box, prune::Sequence::Backoff& backoff, prune::Sequence& con
                std::span<const int> dims, const Params& params, const bool& cut, const std::function<bool()>& stop,
                double box_cap, Stats& stats) {
   const double operations = contractor.operations();
+  // The cap is asked between the contractors' costly steps as well (a relaxation's LPs), so one
+  // pass over a large system cannot spend many times the cap.
+  bool over_cap = false;
+  const std::function<bool()> stop_or_cap = [&] {
+    if ((contractor.live_operations() - operations) / contractor.operations_per_box() > box_cap) return over_cap = true;
+    return stop();
+  };
+  const StopScope scope(contractor, box_cap > 0 ? &stop_or_cap : nullptr, &stop);
   while (true) {
     if (stop()) return Verdict::stopped;
     if (box_cap > 0 && (contractor.operations() - operations) / contractor.operations_per_box() > box_cap)
@@ -27,6 +54,7 @@ Verdict shrink(Box& box, prune::Sequence::Backoff& backoff, prune::Sequence& con
     stats.shrinks++;
     const prune::Outcome outcome = contractor.contract(box, backoff);
     if (cut) return Verdict::stopped;
+    if (over_cap) return Verdict::capped;
     if (outcome == prune::Outcome::empty) return Verdict::empty;
     // A NaN bound (an overflow in the unverified float variant) proves nothing: the box as it
     // was before the pass is split.

@@ -55,7 +55,8 @@ struct Processed {
 // Shrinks `node` with `c` (and `certify`, when given) and bisects it when it is to be split.
 // `stop` is asked between the contractor's costly steps; `cut` is set when it said stop.
 // `box_cap` > 0: the box is capped once its work (boxes of propagation, search.hpp) passes
-// it, asked between passes of the contractors, so whether it is depends on the box alone.
+// it, asked between passes of the contractors and between the costly steps of a pass (the
+// operations counted so far, Sequence::live_operations), so whether it is depends on the box alone.
 Processed process(const Setup& setup, const LogPlace& log, prune::Sequence& c, Certifier* certify, Node node,
                   bool& cut, const std::function<bool()>& stop, double box_cap);
 

@@ -4,11 +4,15 @@
 #include "prune/hc4.hpp"
 #include "prune/lp/clp_core.hpp"
 #include "prune/newton_contractor.hpp"
+#include "prune/sequence.hpp"
 #include "prune/taylor.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <random>
 
 using namespace linkbox;
@@ -85,4 +89,40 @@ TEST_CASE("an LP costs its pivots, and a larger relaxation more per LP", "[opera
     per_lp[k] = c.operations / static_cast<double>(c.lps_solved);
   }
   CHECK(per_lp[1] > per_lp[0]);
+}
+
+TEST_CASE("a sequence's live count advances within a call, so a cap can stop it there", "[operations]") {
+  // The race's box cap (solve/search_step.cpp) is asked between the LPs of one pass: it reads
+  // Sequence::live_operations, which must count the call under way.
+  std::mt19937 rng(7);
+  std::vector<double> root;
+  const auto f = planted(12, rng, root);
+  auto sequence_of = [&] {
+    std::vector<std::unique_ptr<prune::Contractor>> m;
+    m.push_back(std::make_unique<prune::TaylorRelaxation>(f, root.size(), prune::lp::LpBackend::safe, Arith::verified));
+    std::vector<int> dims(root.size());
+    for (size_t j = 0; j < dims.size(); ++j) dims[j] = static_cast<int>(j);
+    return std::make_unique<prune::Sequence>(std::move(m), dims);
+  };
+  const auto whole_ptr = sequence_of();
+  prune::Sequence& whole = *whole_ptr;
+  std::vector<double> seen;
+  const std::function<bool()> watch = [&] { return seen.push_back(whole.live_operations()), false; };
+  whole.stop_when(&watch);
+  Box a = around(root, 0.25);
+  REQUIRE(whole.contract(a) != prune::Outcome::empty);
+  const double full = whole.operations();
+  REQUIRE(seen.size() > 2);
+  CHECK(std::is_sorted(seen.begin(), seen.end()));
+  CHECK(seen.back() > seen.front());
+  CHECK(seen.back() <= full);
+  CHECK(whole.live_operations() == full);  // between calls, the counters alone
+
+  const auto cut_ptr = sequence_of();
+  prune::Sequence& cut = *cut_ptr;
+  const std::function<bool()> cap = [&] { return cut.live_operations() > full / 4; };
+  cut.stop_when(&cap);
+  Box b = around(root, 0.25);
+  cut.contract(b);
+  CHECK(cut.operations() < full / 2);
 }
