@@ -220,12 +220,9 @@ ClusterReport skipped_cluster(const formulate::Formulation& f, const ClusterTask
 
 ClusterReport verify_cluster(const formulate::Formulation& f, const ClusterTask& task, const VerifyOptions& options) {
   const std::vector<bool> periodic(f.output_names().size(), f.outputs_are_angles());
+  if (options.skip_rest && options.skip_rest()) return skipped_cluster(f, task, "interrupted");
   std::vector<Box> member;
   ClusterReport c = gather(f, task, member);
-  if (options.skip_rest && options.skip_rest()) {
-    c.reason = "verification skipped (interrupted)";
-    return c;
-  }
   c.chart = f.chart_for(c.hull);
   Box start;
   try {

@@ -43,7 +43,7 @@ equations = [ "x^2 + y^2 - 1", "x - y" ])");
   CHECK(v.certified_roots == 2);
 }
 
-TEST_CASE("verification stops at its time limit and says so", "[verify][polynomial]") {
+TEST_CASE("verification stops at its time limit or a second interrupt and says so", "[verify][polynomial]") {
   formulate::LoadedCase c = formulate::load_case_text(R"(kind = "polynomial"
 name = "t"
 variables = [ { name = "x", domain = [-2, 2] }, { name = "y", domain = [-2, 2] } ]
@@ -66,6 +66,12 @@ equations = [ "x^2 + y^2 - 1", "x - y" ])",
     CHECK(cl.reason == "verification skipped (time limit)");
   }
   vo.time_limit = 600;
+  vo.skip_rest = [] { return true; };  // a second interrupt, before the first cluster
+  const auto skipped = verify::verify_case(*c.formulation, r, vo);
+  CHECK_FALSE(skipped.exact);
+  REQUIRE(skipped.clusters.size() == 2);
+  for (auto& cl : skipped.clusters) CHECK(cl.reason == "verification skipped (interrupted)");
+  vo.skip_rest = nullptr;
   const auto whole = verify::verify_case(*c.formulation, r, vo);
   CHECK_FALSE(whole.timed_out);
   CHECK(whole.exact);
