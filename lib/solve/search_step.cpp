@@ -41,11 +41,13 @@ Verdict shrink(Box& box, prune::Sequence::Backoff& backoff, prune::Sequence& con
   // The cap is asked between the contractors' costly steps as well (a relaxation's LPs), so one
   // pass over a large system cannot spend many times the cap.
   bool over_cap = false;
-  const std::function<bool()> stop_or_cap = [&] {
-    if ((contractor.live_operations() - operations) / contractor.operations_per_box() > box_cap) return over_cap = true;
-    return stop();
-  };
-  const StopScope scope(contractor, box_cap > 0 ? &stop_or_cap : nullptr, &stop);
+  std::function<bool()> stop_or_cap;
+  if (box_cap > 0)
+    stop_or_cap = [&] {
+      if ((contractor.live_operations() - operations) / contractor.operations_per_box() > box_cap) return over_cap = true;
+      return stop();
+    };
+  const StopScope scope(contractor, stop_or_cap ? &stop_or_cap : nullptr, &stop);
   while (true) {
     if (stop()) return Verdict::stopped;
     if (box_cap > 0 && (contractor.operations() - operations) / contractor.operations_per_box() > box_cap)
