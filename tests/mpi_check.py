@@ -7,6 +7,8 @@
   mpi_check.py MPIRUN LINKBOX interrupt             SIGINT to mpirun: partial JSON, non-zero exit
   mpi_check.py MPIRUN LINKBOX fault                 a rank that dies or hangs ends the run, exit != 0
   mpi_check.py MPIRUN LINKBOX bad-input             exit 2 with file:line, said once
+  mpi_check.py MPIRUN LINKBOX handoff               linkbox without linkbox-mpi beside it: alone it
+                                                    runs, under mpirun it exits 3 naming the program
 
 Every run has a timeout: a hang fails the test instead of stalling the suite."""
 import json
@@ -179,6 +181,21 @@ def bad_input(mpi, linkbox, tmp):
     check(code == 2 and text.count("not under mpirun") == 1, "checkpoints are refused, once")
 
 
+def handoff(mpi, linkbox):
+    # A folder beside the build's, not the temporary one: that may be mounted noexec.
+    with tempfile.TemporaryDirectory(dir=os.path.dirname(os.path.abspath(linkbox))) as alone:
+        copy = os.path.join(alone, "linkbox")
+        with open(linkbox, "rb") as src, open(copy, "wb") as dst:
+            dst.write(src.read())
+        os.chmod(copy, 0o755)
+        case = os.path.join(ROOT, "cases/spherical/agile-eye.toml")
+        code, text = run([copy, "solve", case, "--quiet"])
+        check(code == 0, f"alone, linkbox needs no linkbox-mpi ({code}): " + text[-300:])
+        code, text = run(mpirun(mpi, 1) + [copy, "solve", case, "--quiet"])
+        check(code == 3 and os.path.join(alone, "linkbox-mpi") + " could not start" in text,
+              f"under mpirun, a missing linkbox-mpi is named, exit 3 ({code}): " + text[-600:])
+
+
 def main():
     mpi, linkbox, what = sys.argv[1], sys.argv[2], sys.argv[3]
     with tempfile.TemporaryDirectory() as tmp:
@@ -203,6 +220,8 @@ def main():
             fault(mpi, linkbox, tmp)
         elif what == "bad-input":
             bad_input(mpi, linkbox, tmp)
+        elif what == "handoff":
+            handoff(mpi, linkbox)
         else:
             print(__doc__)
             return 2

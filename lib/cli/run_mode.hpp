@@ -1,7 +1,7 @@
 #pragma once
-// How this process runs a case: alone (RunMode itself), or as one rank of an MPI job. The build
-// decides which can be: CMake compiles run_mpi.cpp (LINKBOX_MPI) or run_local.cpp, and both
-// define start_run_mode.
+// How this process runs a case: alone (RunMode itself), or as one rank of an MPI job. The
+// executable decides which can be: `linkbox` compiles run_local.cpp, `linkbox-mpi` (LINKBOX_MPI)
+// run_mpi.cpp, and both define start_run_mode.
 #include "cli/solve_command.hpp"
 #include "formulate/load.hpp"
 #include "solve/result.hpp"

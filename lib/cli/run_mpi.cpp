@@ -1,7 +1,8 @@
-// A build with MPI (LINKBOX_MPI on): under mpirun, the process is one rank of the job
-// (distributed/); started otherwise, it runs alone.
+// `linkbox-mpi` (built with LINKBOX_MPI): under mpirun, the process is one rank of the job
+// (distributed/); started otherwise, it runs alone. `linkbox` hands mpirun's processes to it.
 #include "cli/interrupts.hpp"
 #include "cli/run_mode.hpp"
+#include "distributed/launched.hpp"
 #include "distributed/mpi_solve.hpp"
 #include "distributed/mpi_verify.hpp"
 
@@ -56,7 +57,7 @@ class MpiMode final : public RunMode {
 }  // namespace
 
 std::unique_ptr<RunMode> start_run_mode(int* argc, char*** argv) {
-  if (!distributed::World::launched()) return std::make_unique<RunMode>();
+  if (!distributed::launched()) return std::make_unique<RunMode>();
   return std::make_unique<MpiMode>(argc, argv);
 }
 

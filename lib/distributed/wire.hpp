@@ -26,9 +26,6 @@ double fault_timeout();
 
 class World {
  public:
-  // Whether mpirun (or another launcher) started this process: only then is MPI started, so a
-  // plain `linkbox` never pays for it.
-  static bool launched();
   World(int* argc, char*** argv);
   ~World();  // MPI_Finalize
   World(const World&) = delete;
