@@ -1,10 +1,9 @@
 #include "input/case_hash.hpp"
 
-#include <openssl/evp.h>
+#include <nettle/sha2.h>
 
 #include <fstream>
 #include <iterator>
-#include <memory>
 
 namespace linkbox::input {
 
@@ -13,14 +12,16 @@ std::string case_sha256(const std::string& path) {
   if (!in) return {};
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) return {};
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int size = 0;
-  if (EVP_Digest(bytes.data(), bytes.size(), digest, &size, EVP_sha256(), nullptr) != 1) return {};
+  sha256_ctx ctx;
+  sha256_init(&ctx);
+  sha256_update(&ctx, bytes.size(), reinterpret_cast<const uint8_t*>(bytes.data()));
+  uint8_t digest[SHA256_DIGEST_SIZE];
+  sha256_digest(&ctx, SHA256_DIGEST_SIZE, digest);
   static const char* hex = "0123456789abcdef";
   std::string out;
-  for (unsigned int k = 0; k < size; ++k) {
-    out += hex[digest[k] >> 4];
-    out += hex[digest[k] & 15];
+  for (const uint8_t byte : digest) {
+    out += hex[byte >> 4];
+    out += hex[byte & 15];
   }
   return out;
 }
