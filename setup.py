@@ -19,8 +19,10 @@ class CMakeBuild(build_ext):
     def build_extension(self, ext):
         out = os.path.dirname(os.path.abspath(self.get_ext_fullpath(ext.name)))
         build = os.path.join(os.path.abspath(self.build_temp), "cmake")
+        # Only the module is built: the executable's static archives are not needed.
         subprocess.check_call(["cmake", "-S", ROOT, "-B", build, "-DCMAKE_BUILD_TYPE=Release", "-DLINKBOX_PYTHON=ON",
-                               "-DPython3_EXECUTABLE=" + sys.executable, "-DLINKBOX_PYTHON_OUTPUT_DIR=" + out])
+                               "-DLINKBOX_STATIC_DEPS=OFF", "-DPython3_EXECUTABLE=" + sys.executable,
+                               "-DLINKBOX_PYTHON_OUTPUT_DIR=" + out])
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
         subprocess.check_call(["cmake", "--build", build, "--target", "_linkbox", "-j", jobs])
 
