@@ -6,6 +6,7 @@
 #include "newton/square_system.hpp"
 #include "verify/check_proofs.hpp"
 #include "verify/symmetric_loop.hpp"
+#include "verify/twin_loops.hpp"
 
 #include <Eigen/LU>
 
@@ -23,15 +24,16 @@ namespace {
 std::string quote(const std::string& s) { return "'" + s + "'"; }
 
 // The Newton image of a loop's own closure over its unknowns' part of x, when it proves one
-// root there inside `within`.
-std::optional<Box> rigid_root(const formulate::NaturalSystem& sys, std::pair<int, int> rows,
-                              const std::vector<int>& vars, const Box& x, const Box& within) {
+// root there inside `within`, and the box where that root is the only one.
+std::optional<RigidRoot> rigid_root(const formulate::NaturalSystem& sys, std::pair<int, int> rows,
+                                    const std::vector<int>& vars, const Box& x, const Box& within) {
   std::vector<model::Polynomial> eqs(sys.equations.begin() + rows.first, sys.equations.begin() + rows.second);
   if (eqs.size() != vars.size()) return std::nullopt;
   const newton::SquareSystem s(eqs, vars, x);
   for (const Box* hull : {&x, &within}) {
     const newton::Certificate c = newton::certify_root(s, s.restrict(*hull));
-    if (c.status == newton::Status::certified && contains(s.restrict(within), c.image)) return c.image;
+    if (c.status == newton::Status::certified && contains(s.restrict(within), c.image))
+      return RigidRoot{c.image, c.box};
     if (&x == &within) break;
   }
   return std::nullopt;
@@ -156,6 +158,7 @@ CoupledLoops coupled_loops_root(const formulate::Formulation& f, std::uint64_t c
   Reduced r{f, chart, sys, x, {}, {}, {}, {}, {}, {}};
   std::vector<bool> in_loop(n, false), row_in_loop(sys.equations.size(), false);
   std::vector<std::string> rigid, curve;
+  std::vector<std::optional<RigidRoot>> roots(loops.size());
   for (size_t l = 0; l < loops.size(); ++l) {
     const std::vector<int>& vars = linkage->loop_unknowns(l);
     for (int k : vars) {
@@ -163,8 +166,8 @@ CoupledLoops coupled_loops_root(const formulate::Formulation& f, std::uint64_t c
       in_loop[k] = true;
     }
     for (int e = sys.loop_rows[l].first; e < sys.loop_rows[l].second; ++e) row_in_loop[e] = true;
-    if (const auto root = rigid_root(sys, sys.loop_rows[l], vars, x, within)) {
-      for (size_t i = 0; i < vars.size(); ++i) r.params[vars[i]] = (*root)[i];
+    if ((roots[l] = rigid_root(sys, sys.loop_rows[l], vars, x, within))) {
+      for (size_t i = 0; i < vars.size(); ++i) r.params[vars[i]] = roots[l]->image[i];
       rigid.push_back(loops[l].name);
     } else if (auto s = SymmetricLoop::of_loop(*linkage, l, vars)) {
       r.loops.push_back(std::move(*s));
@@ -179,6 +182,12 @@ CoupledLoops coupled_loops_root(const formulate::Formulation& f, std::uint64_t c
     if (!in_loop[k]) r.free.push_back(static_cast<int>(k));
   for (size_t e = 0; e < sys.equations.size(); ++e)
     if (!row_in_loop[e]) r.rows.push_back(static_cast<int>(e));
+  std::string twin;
+  if (r.equations() > r.unknowns())
+    if (const auto t = twin_constraint(*linkage, chart, roots)) {
+      std::erase(r.rows, t->implied_row);
+      twin = t->how + ", ";
+    }
   out.equations = r.equations();
   out.unknowns = r.unknowns();
   if (r.unknowns() != r.equations() || r.unknowns() == 0) {
@@ -217,9 +226,10 @@ CoupledLoops coupled_loops_root(const formulate::Formulation& f, std::uint64_t c
   out.proved = true;
   out.how = (rigid.empty() ? "" : "loop" + std::string(rigid.size() > 1 ? "s " : " ") + names(rigid) +
                                         " rigid (interval Newton on its own closure), ") +
-            "loop" + (curve.size() > 1 ? "s " : " ") + names(curve) +
-            " on its symmetric curve (v = 0, R(u) = 0), and " + std::to_string(r.rows.size()) +
-            " equations of no loop: interval Newton on the coupled system";
+            (curve.empty() ? "" : "loop" + std::string(curve.size() > 1 ? "s " : " ") + names(curve) +
+                                      " on its symmetric curve (v = 0, R(u) = 0), ") +
+            twin + "and " + count(static_cast<int>(r.rows.size()), "equation") +
+            " of no loop: interval Newton on the coupled system";
   return out;
 }
 

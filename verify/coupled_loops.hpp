@@ -11,8 +11,9 @@
 //    translation has T(u)^2 = I), two equations in its three u;
 //  - the curve loops' u and the unknowns of no loop (turns), with the rigid loops' roots as
 //    interval parameters, must satisfy R = 0 for each curve loop and every equation of no
-//    loop (angle constraints): when that system is square, a Krawczyk image strictly inside
-//    Y proves one root of it in Y for every value of the parameters.
+//    loop (angle constraints), less one that another implies at two rigid loops' common
+//    root (verify/twin_loops.hpp): when that system is square, a Krawczyk image strictly
+//    inside Y proves one root of it in Y for every value of the parameters.
 // The point made of those roots satisfies every natural equation, so the whole system has a
 // root in the box they span. Uniqueness is the caller's: a square subsystem whose root is
 // unique in the cluster bounds the whole system's roots there to that one.

@@ -16,8 +16,6 @@ using newton::IVector;
 
 namespace {
 
-bool same(const Interval& a, const Interval& b) { return a.lower() == b.lower() && a.upper() == b.upper(); }
-
 using F = FastInterval;
 using M44 = std::array<std::array<F, 4>, 4>;
 
@@ -70,7 +68,10 @@ std::optional<SymmetricLoop> SymmetricLoop::of_loop(const formulate::LinkageForm
   }
   for (int i = 0; i < 3; ++i) {
     const auto &x = links[i], &y = links[i + 3];
-    if (!same(x.a, y.a) || !same(x.d, y.d) || !same(x.alpha, y.alpha)) return std::nullopt;
+    using input::same_real;
+    if (!same_real(x.exact.a, y.exact.a) || !same_real(x.exact.d, y.exact.d) ||
+        !same_real(x.exact.alpha, y.exact.alpha))
+      return std::nullopt;
     s.a_[i] = fast(x.a);
     s.d_[i] = fast(x.d);
     s.cos_alpha_[i] = fast(rigorous::cos(x.alpha));

@@ -68,20 +68,28 @@ LoopLink read_entry(const TomlReader& r, const toml::node& n, const std::string&
       r.fail(*type, "unknown joint type '" + s + "' (known: revolute, prismatic)");
     e.prismatic = s == "prismatic";
   }
-  e.a = r.number(r.required(t, "a", "length 'a'" + of), "a");
-  e.alpha = r.number(r.required(t, "alpha", "twist 'alpha'" + of), "alpha");
+  const toml::node &a = r.required(t, "a", "length 'a'" + of), &alpha = r.required(t, "alpha", "twist 'alpha'" + of);
+  e.a = r.number(a, "a");
+  e.alpha = r.number(alpha, "alpha");
+  e.exact.a = r.exact_key(a);
+  e.exact.alpha = r.exact_key(alpha);
   const toml::node& d = r.required(t, "d", "offset 'd'" + of);
   if (e.prismatic) {
     const std::string what = "range 'd' of prismatic joint '" + e.joint + "'";
     const std::vector<Interval> range = r.numbers(d, 2, what);
     if (range[0].lower() > range[1].upper()) r.fail(d, "empty " + what + ": lower bound exceeds upper bound");
     e.d = Interval(range[0].lower(), range[1].upper());
-    e.theta = r.number(r.required(t, "theta", "fixed angle 'theta' of prismatic joint '" + e.joint + "'"), "theta");
+    const std::string lower = r.exact_key(*d.as_array()->get(0)), upper = r.exact_key(*d.as_array()->get(1));
+    e.exact.d = lower.empty() || upper.empty() ? "" : lower + " " + upper;
+    const toml::node& theta = r.required(t, "theta", "fixed angle 'theta' of prismatic joint '" + e.joint + "'");
+    e.theta = r.number(theta, "theta");
+    e.exact.theta = r.exact_key(theta);
   } else {
     if (d.as_array())
       r.fail(d, "offset 'd'" + of + " is a range, but joint '" + e.joint +
                     "' is revolute (add type = \"prismatic\" for a sliding joint)");
     e.d = r.number(d, "d");
+    e.exact.d = r.exact_key(d);
     if (t.contains("theta"))
       r.fail(*t.get("theta"), "joint '" + e.joint + "' is revolute: its theta is the unknown (a fixed theta needs "
                               "type = \"prismatic\")");
@@ -120,7 +128,9 @@ LinkageCase read_linkage(const toml::table& root, const TomlReader& r) {
         r.fail(joints, "'joints' of an angle constraint must be an array of 2 joint names");
       a.joint1 = r.string(*pair->get(0), "joint name");
       a.joint2 = r.string(*pair->get(1), "joint name");
-      a.angle = r.number(r.required(t, "angle", "angle of the angle constraint"), "angle");
+      const toml::node& angle = r.required(t, "angle", "angle of the angle constraint");
+      a.angle = r.number(angle, "angle");
+      a.exact_angle = r.exact_key(angle);
       c.angle_constraints.push_back(std::move(a));
     }
   }

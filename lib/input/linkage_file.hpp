@@ -24,8 +24,15 @@ struct LoopLink {
   Interval alpha;  // twist: angle from d_i to d_{i+1} about a_i, radians
   Interval d;      // revolute: offset along d_i from a_{i-1} to a_i; prismatic: its range
   Interval theta;  // prismatic only: the fixed angle from a_{i-1} to a_i about d_i, radians
+  // a, alpha, d and theta as TomlReader::exact_key gives them (compare with same_real).
+  struct Keys {
+    std::string a, alpha, d, theta;
+  } exact;
   int line = 0;
 };
+
+// Two exact keys (TomlReader::exact_key) of the same real: equal and known.
+inline bool same_real(const std::string& x, const std::string& y) { return !x.empty() && x == y; }
 
 struct LinkageLoop {
   std::string name;
@@ -39,6 +46,7 @@ struct AngleConstraint {
   std::string name;
   std::string joint1, joint2;
   Interval angle;
+  std::string exact_angle;  // TomlReader::exact_key of the angle
   int line = 0;
 };
 

@@ -42,6 +42,33 @@ bool is_decimal_float(std::string_view s) {
   return i == s.size();
 }
 
+// A decimal that is_decimal_float accepts as "[-]M e E", M without leading or trailing zeros
+// ("0" for zero): two decimals are the same real exactly when their keys are equal.
+std::string decimal_key(std::string_view s) {
+  const bool negative = !s.empty() && s[0] == '-';
+  size_t i = !s.empty() && (s[0] == '+' || s[0] == '-') ? 1 : 0;
+  std::string m;
+  long long exponent = 0;
+  bool fraction = false;
+  for (; i < s.size() && s[i] != 'e' && s[i] != 'E'; ++i) {
+    if (s[i] == '.') {
+      fraction = true;
+    } else {
+      m += s[i];
+      exponent -= fraction ? 1 : 0;
+    }
+  }
+  if (i < s.size()) {
+    const std::string e(s.substr(i + 1));
+    if (e.size() > 15) return {};
+    exponent += std::stoll(e);
+  }
+  m.erase(0, m.find_first_not_of('0'));
+  if (m.empty()) return "0";
+  for (; m.back() == '0'; m.pop_back()) ++exponent;
+  return (negative ? "-" : "") + m + "e" + std::to_string(exponent);
+}
+
 std::string join(std::initializer_list<std::string_view> words) {
   std::string s;
   for (auto w : words) s += (s.empty() ? "" : ", ") + std::string(w);
@@ -148,6 +175,18 @@ Interval TomlReader::number(const toml::node& n, std::string_view what) const {
     }
   }
   fail(n, std::string(what) + " must be a number (integer, float or expression string), found " + type_name(n));
+}
+
+std::string TomlReader::exact_key(const toml::node& n) const {
+  if (auto* i = n.as_integer()) return decimal_key(std::to_string(i->get()));
+  if (auto* s = n.as_string()) return "expression " + s->get();
+  if (auto* f = n.as_floating_point()) {
+    std::string literal;
+    for (char c : source_slice(f->source()))
+      if (c != '_') literal += c;
+    if (is_decimal_float(literal) && contains(rigorous::decimal(literal), f->get())) return decimal_key(literal);
+  }
+  return {};
 }
 
 std::vector<Interval> TomlReader::numbers(const toml::node& n, size_t count, std::string_view what) const {

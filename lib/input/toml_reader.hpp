@@ -40,6 +40,11 @@ class TomlReader {
   // A number: TOML integer, TOML float (enclosed as the decimal literal in the source) or a
   // string constant expression ("pi/2"). Always finite.
   Interval number(const toml::node& n, std::string_view what) const;
+  // For a number that `number` accepts, a key equal for two numbers only when they are the
+  // same real: the canonical decimal of a literal ("1.50" and "15e-1" alike), an expression
+  // string as written; empty (equal to nothing) when the literal cannot be recovered. Enclosures
+  // cannot say this: distinct decimals within one ulp have the same one.
+  std::string exact_key(const toml::node& n) const;
   // An array of exactly `count` numbers.
   std::vector<Interval> numbers(const toml::node& n, size_t count, std::string_view what) const;
 

@@ -285,3 +285,28 @@ equations = [ "x - 0.5" ]
   CHECK(same(s.equations[0].constant_term(), Interval(-0.5)));
   CHECK(s.equation_names == std::vector<std::string>{""});
 }
+
+TEST_CASE("case file: a linkage's parameters are told apart as written, not by enclosure", "[case_file]") {
+  const input::Case c = input::read_case_text(R"(kind = "linkage"
+name = "keys"
+ground = "L3"
+[[loops]]
+links = [
+  { joint = "J1", link = "L1", a = 1.50, d = 0, alpha = 1.91 },
+  { joint = "J2", link = "L2", a = 15e-1, d = 0.0, alpha = 1.9100000000000001 },
+  { joint = "J3", link = "L3", a = "3/2", d = -0.0, alpha = 1_91e-2 },
+]
+)",
+                                              "keys.toml");
+  const auto& links = std::get<input::LinkageCase>(c.description).loops.at(0).links;
+  using input::same_real;
+  CHECK(same_real(links[0].exact.a, links[1].exact.a));   // 1.50 = 15e-1
+  CHECK(!same_real(links[0].exact.a, links[2].exact.a));  // an expression is never a decimal
+  CHECK(same_real(links[0].exact.d, links[1].exact.d));
+  CHECK(same_real(links[0].exact.d, links[2].exact.d));  // -0.0 = 0
+  // 1.91 and 1.9100000000000001 have one enclosure, but are not one real.
+  CHECK(same(links[0].alpha, links[1].alpha));
+  CHECK(!same_real(links[0].exact.alpha, links[1].exact.alpha));
+  CHECK(same_real(links[0].exact.alpha, links[2].exact.alpha));
+  CHECK(!same_real("", ""));
+}
