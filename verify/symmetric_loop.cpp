@@ -68,10 +68,7 @@ std::optional<SymmetricLoop> SymmetricLoop::of_loop(const formulate::LinkageForm
   }
   for (int i = 0; i < 3; ++i) {
     const auto &x = links[i], &y = links[i + 3];
-    using input::same_real;
-    if (!same_real(x.exact.a, y.exact.a) || !same_real(x.exact.d, y.exact.d) ||
-        !same_real(x.exact.alpha, y.exact.alpha))
-      return std::nullopt;
+    if (!input::same_link(x, y)) return std::nullopt;
     s.a_[i] = fast(x.a);
     s.d_[i] = fast(x.d);
     s.cos_alpha_[i] = fast(rigorous::cos(x.alpha));

@@ -5,14 +5,9 @@ namespace linkbox::verify {
 namespace {
 
 using input::LinkageLoop;
-using input::LoopLink;
 
+using input::same_link;
 using input::same_real;
-
-bool same_link(const LoopLink& x, const LoopLink& y) {
-  return x.prismatic == y.prismatic && same_real(x.exact.a, y.exact.a) && same_real(x.exact.d, y.exact.d) &&
-         same_real(x.exact.alpha, y.exact.alpha) && (!x.prismatic || same_real(x.exact.theta, y.exact.theta));
-}
 
 // The one joint the two loops share, at the same entry of both; -1 when there is none such.
 int shared_entry(const LinkageLoop& a, const LinkageLoop& b) {

@@ -33,6 +33,11 @@ struct LoopLink {
 
 // Two exact keys (TomlReader::exact_key) of the same real: equal and known.
 inline bool same_real(const std::string& x, const std::string& y) { return !x.empty() && x == y; }
+// Two loop entries with the same joint type and the same parameters, as reals.
+inline bool same_link(const LoopLink& x, const LoopLink& y) {
+  return x.prismatic == y.prismatic && same_real(x.exact.a, y.exact.a) && same_real(x.exact.d, y.exact.d) &&
+         same_real(x.exact.alpha, y.exact.alpha) && (!x.prismatic || same_real(x.exact.theta, y.exact.theta));
+}
 
 struct LinkageLoop {
   std::string name;
