@@ -111,16 +111,18 @@ void map_curve(const formulate::Formulation& f, const std::vector<Box>& member, 
   c.reason = c.map->statement;
 }
 
-// A cluster of a symmetric six-joint loop that no square subsystem maps (its closure is
-// redundant along curves): the map through the loop's symmetry, when one can be stated.
-void map_symmetric_loop(const formulate::Formulation& f, const std::vector<Box>& member, ClusterReport& c) {
+// The map of a cluster of a symmetric six-joint loop (its closure is redundant along curves,
+// so no square subsystem maps it), when one can be stated.
+std::optional<CurveMap> symmetric_map_of(const formulate::Formulation& f, const std::vector<Box>& member) {
   const auto loop = SymmetricLoop::of(f);
-  if (!loop) return;
+  if (!loop) return std::nullopt;
   for (const Box& m : member)
-    if (max_width(m) > kSymmetricMember) return;
-  auto map = map_symmetric(*loop, member);
-  if (!map) return;
-  if (map->arcs.empty()) {
+    if (max_width(m) > kSymmetricMember) return std::nullopt;
+  return map_symmetric(*loop, member);
+}
+
+void state_symmetric_map(CurveMap map, ClusterReport& c) {
+  if (map.arcs.empty()) {
     c.status = ClusterStatus::empty;
     c.reason = "proved to hold no root: every piece excluded through the loop's symmetry";
     return;
@@ -232,9 +234,14 @@ ClusterReport verify_cluster(const formulate::Formulation& f, const ClusterTask&
   }
   if (!start.empty()) certify_isolated(f, f.natural(c.chart), start, member, periodic, c, options.newton);
   if (!start.empty()) certify_coupled(f, start, member, periodic, c);
-  const bool curve_like = classify_curve(f, member, !start.empty(), c, options.newton);
-  if (curve_like) map_curve(f, member, !start.empty(), c, options.newton);
-  if (!c.map && c.status != ClusterStatus::certified) map_symmetric_loop(f, member, c);
+  std::optional<CurveMap> symmetric;
+  if (c.status != ClusterStatus::certified) symmetric = symmetric_map_of(f, member);
+  // A proved symmetric map states more than crossings of n - 1 equations could.
+  if (!symmetric || !(symmetric->proved || symmetric->arcs.empty())) {
+    const bool curve_like = classify_curve(f, member, !start.empty(), c, options.newton);
+    if (curve_like) map_curve(f, member, !start.empty(), c, options.newton);
+  }
+  if (symmetric && !c.map && c.status != ClusterStatus::certified) state_symmetric_map(std::move(*symmetric), c);
   if (!start.empty()) classify_inequalities(f.natural(c.chart), start, c);
   return c;
 }

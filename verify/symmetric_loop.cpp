@@ -17,23 +17,26 @@ using newton::IVector;
 namespace {
 
 using F = FastInterval;
-using M44 = std::array<std::array<F, 4>, 4>;
+template <class T>
+using M44 = std::array<std::array<T, 4>, 4>;
 
 F fast(const Interval& x) { return F(x.lower(), x.upper()); }
 Interval safe(const F& x) { return Interval(x.lower(), x.upper()); }
 
-M44 times(const M44& x, const M44& y) {
-  M44 r;
+template <class T>
+M44<T> times(const M44<T>& x, const M44<T>& y) {
+  M44<T> r;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
-      F s(0.0);
+      T s(0.0);
       for (int k = 0; k < 4; ++k) s += x[i][k] * y[k][j];
       r[i][j] = s;
     }
   return r;
 }
 
-std::array<F, 4> times(const std::array<F, 4>& a, const std::array<F, 4>& b) {
+template <class T>
+std::array<T, 4> times(const std::array<T, 4>& a, const std::array<T, 4>& b) {
   return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
           a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1], a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
 }
@@ -69,12 +72,17 @@ std::optional<SymmetricLoop> SymmetricLoop::of_loop(const formulate::LinkageForm
   for (int i = 0; i < 3; ++i) {
     const auto &x = links[i], &y = links[i + 3];
     if (!input::same_link(x, y)) return std::nullopt;
-    s.a_[i] = fast(x.a);
-    s.d_[i] = fast(x.d);
-    s.cos_alpha_[i] = fast(rigorous::cos(x.alpha));
-    s.sin_alpha_[i] = fast(rigorous::sin(x.alpha));
-    s.cos_half_alpha_[i] = fast(rigorous::cos(x.alpha / 2.0));
-    s.sin_half_alpha_[i] = fast(rigorous::sin(x.alpha / 2.0));
+    const Interval alpha(x.alpha), values[6] = {Interval(x.a),           Interval(x.d),
+                                                rigorous::cos(alpha),    rigorous::sin(alpha),
+                                                rigorous::cos(alpha / 2.0), rigorous::sin(alpha / 2.0)};
+    std::array<F, 3>* fast_of[6] = {&s.p_.a, &s.p_.d, &s.p_.cos_alpha, &s.p_.sin_alpha, &s.p_.cos_half_alpha,
+                                    &s.p_.sin_half_alpha};
+    std::array<double, 3>* mid_of[6] = {&s.mid_.a, &s.mid_.d, &s.mid_.cos_alpha, &s.mid_.sin_alpha,
+                                        &s.mid_.cos_half_alpha, &s.mid_.sin_half_alpha};
+    for (int k = 0; k < 6; ++k) {
+      (*fast_of[k])[i] = fast(values[k]);
+      (*mid_of[k])[i] = median(values[k]);
+    }
   }
   return s;
 }
@@ -99,8 +107,8 @@ Box SymmetricLoop::to_output(const Box& uv) const {
   return out;
 }
 
-SymmetricLoop::Trig SymmetricLoop::trig(const Angles& theta) {
-  Trig t;
+SymmetricLoop::Trig<F> SymmetricLoop::trig(const Angles& theta) {
+  Trig<F> t;
   for (int i = 0; i < 3; ++i) {
     const fast_trig::SinCos sc = fast_trig::sin_cos(fast(theta[i]));
     t.c[i] = sc.cos;
@@ -112,20 +120,21 @@ SymmetricLoop::Trig SymmetricLoop::trig(const Angles& theta) {
 // The product of entries 0-2's transforms Rz(theta) Tz(d) Tx(a) Rx(alpha), or of their
 // inverses in reverse order, with factor `derivative` replaced by its derivative in theta
 // (whose last row is 0).
-SymmetricLoop::M34 SymmetricLoop::chain(const Trig& t, int derivative, bool inverse) const {
-  M44 product;
+template <class T>
+SymmetricLoop::M34<T> SymmetricLoop::chain(const Parameters<T>& p, const Trig<T>& t, int derivative, bool inverse) {
+  M44<T> product;
   for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) product[i][j] = F(i == j ? 1.0 : 0.0);
+    for (int j = 0; j < 4; ++j) product[i][j] = T(i == j ? 1.0 : 0.0);
   for (int step = 0; step < 3; ++step) {
     const int i = inverse ? 2 - step : step;
-    const F &c = t.c[i], &s = t.s[i];
+    const T &c = t.c[i], &s = t.s[i];
     const bool diff = derivative == i;
     // d/dtheta maps (c, s) to (-s, c) and drops the constant parts.
-    const F c1 = diff ? -s : c, s1 = diff ? c : s, one(diff ? 0.0 : 1.0);
-    const F &ca = cos_alpha_[i], &sa = sin_alpha_[i], &a = a_[i], &d = d_[i];
-    const F z(0.0), zd = diff ? z : d, zd_sa = diff ? z : -d * sa, zd_ca = diff ? z : -d * ca,
-                   za = diff ? z : -a;
-    M44 m;
+    const T c1 = diff ? T(-s) : c, s1 = diff ? c : s, one(diff ? 0.0 : 1.0);
+    const T &ca = p.cos_alpha[i], &sa = p.sin_alpha[i], &a = p.a[i], &d = p.d[i];
+    const T z(0.0), zd = diff ? z : d, zd_sa = diff ? z : T(-d * sa), zd_ca = diff ? z : T(-d * ca),
+                    za = diff ? z : T(-a);
+    M44<T> m;
     if (!inverse)
       m = {{{c1, -s1 * ca, s1 * sa, c1 * a}, {s1, c1 * ca, -c1 * sa, s1 * a}, {z, diff ? z : sa, diff ? z : ca, zd},
             {z, z, z, one}}};
@@ -134,21 +143,37 @@ SymmetricLoop::M34 SymmetricLoop::chain(const Trig& t, int derivative, bool inve
             {z, z, z, one}}};
     product = times(product, m);
   }
-  M34 r;
+  M34<T> r;
   for (int i = 0; i < 3; ++i) r[i] = product[i];
   return r;
 }
 
-std::array<F, 4> SymmetricLoop::quaternion(const Trig& half, int derivative) const {
-  std::array<F, 4> q{F(1.0), F(0.0), F(0.0), F(0.0)};
-  const F z(0.0);
+template <class T>
+std::array<T, 4> SymmetricLoop::quaternion(const Parameters<T>& p, const Trig<T>& half, int derivative) {
+  std::array<T, 4> q{T(1.0), T(0.0), T(0.0), T(0.0)};
+  const T z(0.0);
   for (int i = 0; i < 3; ++i) {
-    const F &c = half.c[i], &s = half.s[i];
-    const std::array<F, 4> about_z =
-        derivative == i ? std::array<F, 4>{-s / 2.0, z, z, c / 2.0} : std::array<F, 4>{c, z, z, s};
-    q = times(times(q, about_z), {cos_half_alpha_[i], sin_half_alpha_[i], z, z});
+    const T &c = half.c[i], &s = half.s[i];
+    const std::array<T, 4> about_z =
+        derivative == i ? std::array<T, 4>{T(-s / 2.0), z, z, T(c / 2.0)} : std::array<T, 4>{c, z, z, s};
+    q = times(times(q, about_z), std::array<T, 4>{p.cos_half_alpha[i], p.sin_half_alpha[i], z, z});
   }
   return q;
+}
+
+template <class T>
+void SymmetricLoop::r_and_jacobian(const Parameters<T>& p, const Trig<T>& full, const Trig<T>& half,
+                                   std::array<T, 2>& r, std::array<std::array<T, 3>, 2>& j) {
+  const auto q = quaternion(p, half, -1);
+  const M34<T> t = chain(p, full, -1, false);
+  r[0] = q[0];
+  r[1] = q[1] * t[0][3] + q[2] * t[1][3] + q[3] * t[2][3];
+  for (int k = 0; k < 3; ++k) {
+    const auto dq = quaternion(p, half, k);
+    const M34<T> dt = chain(p, full, k, false);
+    j[0][k] = dq[0];
+    j[1][k] = dq[1] * t[0][3] + dq[2] * t[1][3] + dq[3] * t[2][3] + q[1] * dt[0][3] + q[2] * dt[1][3] + q[3] * dt[2][3];
+  }
 }
 
 namespace {
@@ -175,7 +200,7 @@ std::pair<std::array<Interval, 3>, std::array<Interval, 3>> halves(const Box& uv
 IVector SymmetricLoop::d_values(const Box& uv) const {
   RoundingGuard guard;
   const auto [first, second] = halves(uv);
-  const M34 t = chain(trig(first), -1, false), inv = chain(trig(second), -1, true);
+  const M34<F> t = chain(p_, trig(first), -1, false), inv = chain(p_, trig(second), -1, true);
   IVector d(12);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 4; ++j) d(4 * i + j) = safe(t[i][j] - inv[i][j]);
@@ -185,8 +210,9 @@ IVector SymmetricLoop::d_values(const Box& uv) const {
 IVector SymmetricLoop::a_values(const Box& uv) const {
   RoundingGuard guard;
   const auto [first, second] = halves(uv);
-  const Trig a = trig(first), b = trig(second);
-  const M34 ta = chain(a, -1, false), ia = chain(a, -1, true), tb = chain(b, -1, false), ib = chain(b, -1, true);
+  const Trig<F> a = trig(first), b = trig(second);
+  const M34<F> ta = chain(p_, a, -1, false), ia = chain(p_, a, -1, true), tb = chain(p_, b, -1, false),
+               ib = chain(p_, b, -1, true);
   IVector r(12);
   for (int i = 0; i < 3; ++i)
     for (int c = 0; c < 4; ++c) r(4 * i + c) = safe(ta[i][c] + ia[i][c] - tb[i][c] - ib[i][c]);
@@ -198,10 +224,11 @@ IVector SymmetricLoop::a_values(const Box& uv) const {
 IMatrix SymmetricLoop::a_jacobian(const Box& uv, double sign) const {
   RoundingGuard guard;
   const auto [first, second] = halves(uv);
-  const Trig a = trig(first), b = trig(second);
+  const Trig<F> a = trig(first), b = trig(second);
   IMatrix j(12, 3);
   for (int k = 0; k < 3; ++k) {
-    const M34 ta = chain(a, k, false), ia = chain(a, k, true), tb = chain(b, k, false), ib = chain(b, k, true);
+    const M34<F> ta = chain(p_, a, k, false), ia = chain(p_, a, k, true), tb = chain(p_, b, k, false),
+                 ib = chain(p_, b, k, true);
     for (int i = 0; i < 3; ++i)
       for (int c = 0; c < 4; ++c) j(4 * i + c, k) = safe(ta[i][c] + ia[i][c] + sign * (tb[i][c] + ib[i][c]));
   }
@@ -210,14 +237,14 @@ IMatrix SymmetricLoop::a_jacobian(const Box& uv, double sign) const {
 
 Interval SymmetricLoop::q0(const Box& u) const {
   RoundingGuard guard;
-  return safe(quaternion(trig(halved(take(u, 0))), -1)[0]);
+  return safe(quaternion(p_, trig(halved(take(u, 0))), -1)[0]);
 }
 
 IVector SymmetricLoop::r_values(const Box& u) const {
   RoundingGuard guard;
   const auto th = take(u, 0);
-  const auto q = quaternion(trig(halved(th)), -1);
-  const M34 t = chain(trig(th), -1, false);
+  const auto q = quaternion(p_, trig(halved(th)), -1);
+  const M34<F> t = chain(p_, trig(th), -1, false);
   IVector r(2);
   r(0) = safe(q[0]);
   r(1) = safe(q[1] * t[0][3] + q[2] * t[1][3] + q[3] * t[2][3]);
@@ -227,18 +254,30 @@ IVector SymmetricLoop::r_values(const Box& u) const {
 IMatrix SymmetricLoop::r_jacobian(const Box& u) const {
   RoundingGuard guard;
   const auto th = take(u, 0);
-  const Trig full = trig(th), half = trig(halved(th));
-  const auto q = quaternion(half, -1);
-  const M34 t = chain(full, -1, false);
+  std::array<F, 2> r;
+  std::array<std::array<F, 3>, 2> dr;
+  r_and_jacobian(p_, trig(th), trig(halved(th)), r, dr);
   IMatrix j(2, 3);
-  for (int k = 0; k < 3; ++k) {
-    const auto dq = quaternion(half, k);
-    const M34 dt = chain(full, k, false);
-    j(0, k) = safe(dq[0]);
-    j(1, k) = safe(dq[1] * t[0][3] + dq[2] * t[1][3] + dq[3] * t[2][3] + q[1] * dt[0][3] + q[2] * dt[1][3] +
-                   q[3] * dt[2][3]);
-  }
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k < 3; ++k) j(i, k) = safe(dr[i][k]);
   return j;
+}
+
+void SymmetricLoop::r_at(const Eigen::Vector3d& u, Eigen::Vector2d& r, Eigen::Matrix<double, 2, 3>& j) const {
+  Trig<double> full, half;
+  for (int i = 0; i < 3; ++i) {
+    full.c[i] = std::cos(u(i));
+    full.s[i] = std::sin(u(i));
+    half.c[i] = std::cos(u(i) / 2);
+    half.s[i] = std::sin(u(i) / 2);
+  }
+  std::array<double, 2> value;
+  std::array<std::array<double, 3>, 2> d;
+  r_and_jacobian(mid_, full, half, value, d);
+  for (int i = 0; i < 2; ++i) {
+    r(i) = value[i];
+    for (int k = 0; k < 3; ++k) j(i, k) = d[i][k];
+  }
 }
 
 Box toward_subspace(const Box& uv) {

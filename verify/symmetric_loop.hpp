@@ -56,6 +56,9 @@ class SymmetricLoop {
   // R(u) = (q_0, vec q . p) over u (3 sides) and its 2 x 3 Jacobian.
   newton::IVector r_values(const Box& u) const;
   newton::IMatrix r_jacobian(const Box& u) const;
+  // R and its Jacobian at a point in floating point, with the parameters' midpoints: no
+  // enclosure, for float Newton steps only.
+  void r_at(const Eigen::Vector3d& u, Eigen::Vector2d& r, Eigen::Matrix<double, 2, 3>& j) const;
   Interval q0(const Box& u) const;
 
   // The three rows of A and the preconditioner that make the uniqueness test succeed at the
@@ -74,19 +77,33 @@ class SymmetricLoop {
  private:
   std::array<int, 6> output_of_{};
   size_t outputs_ = 6;
-  // Products run in FastInterval inside a RoundingGuard held by each public evaluation.
+  // Products run in FastInterval inside a RoundingGuard held by each public evaluation; the
+  // same code in double gives r_at.
   using F = FastInterval;
-  std::array<F, 3> a_, d_, cos_alpha_, sin_alpha_, cos_half_alpha_, sin_half_alpha_;
-  using M34 = std::array<std::array<F, 4>, 3>;
-  using Angles = std::array<Interval, 3>;
-  struct Trig {
-    std::array<F, 3> c, s;  // cos and sin of each angle
+  template <class T>
+  struct Parameters {
+    std::array<T, 3> a, d, cos_alpha, sin_alpha, cos_half_alpha, sin_half_alpha;
   };
-  static Trig trig(const Angles& theta);
+  Parameters<F> p_;
+  Parameters<double> mid_;  // p_'s midpoints
+  template <class T>
+  using M34 = std::array<std::array<T, 4>, 3>;
+  using Angles = std::array<Interval, 3>;
+  template <class T>
+  struct Trig {
+    std::array<T, 3> c, s;  // cos and sin of each angle
+  };
+  static Trig<F> trig(const Angles& theta);
   // T(theta) (rows 0-2), or with factor k replaced by its derivative; `inverse`: T(theta)^-1.
-  M34 chain(const Trig& t, int derivative, bool inverse) const;
+  template <class T>
+  static M34<T> chain(const Parameters<T>& p, const Trig<T>& t, int derivative, bool inverse);
   // The quaternion of T's rotation from the half angles' cos and sin.
-  std::array<F, 4> quaternion(const Trig& half, int derivative) const;
+  template <class T>
+  static std::array<T, 4> quaternion(const Parameters<T>& p, const Trig<T>& half, int derivative);
+  // R and its Jacobian from the angles' and the half angles' cos and sin.
+  template <class T>
+  static void r_and_jacobian(const Parameters<T>& p, const Trig<T>& full, const Trig<T>& half, std::array<T, 2>& r,
+                             std::array<std::array<T, 3>, 2>& j);
   newton::IMatrix a_jacobian(const Box& uv, double sign) const;
 };
 

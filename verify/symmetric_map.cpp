@@ -31,8 +31,6 @@ bool finite(const Box& b) {
   return true;
 }
 
-Box point(const Eigen::Vector3d& x) { return {Interval(x(0)), Interval(x(1)), Interval(x(2))}; }
-
 // The parametric Krawczyk image of Y (the sides other than p) over u, in mean-value form in
 // the parameter too: K = y^ - C R(t^, y^) - C R_t(U) ([t] - t^) + (I - C R_y(U)) (Y - y^).
 // Returns the image; `interior` when strictly inside Y.
@@ -60,12 +58,19 @@ Box reduced_image(const SymmetricLoop& loop, const Box& u, int p, const Eigen::M
   return image;
 }
 
-// The arc's point on the face t = value, tightened by Krawczyk steps within the arc's box.
+// The arc's point on the face t = value, tightened by Krawczyk steps within the arc's box
+// until its sides are a ten-thousandth of the box's: ends are only ever tested for lying
+// inside another arc's box, which is grown from a whole piece.
 Box end_at(const SymmetricLoop& loop, const Box& u, int p, double value, const Eigen::MatrixXd& c) {
   Box e = u;
   e[p] = Interval(value);
   const auto y = others(p);
-  for (int step = 0; step < 6; ++step) {
+  const auto tight = [&] {
+    for (int i = 0; i < 2; ++i)
+      if (width_up(e[y[i]]) > 1e-4 * width_up(u[y[i]])) return false;
+    return true;
+  };
+  for (int step = 0; step < 6 && !tight(); ++step) {
     bool interior = false;
     const Box image = reduced_image(loop, e, p, c, interior);
     for (int i = 0; i < 2; ++i)
@@ -77,18 +82,27 @@ Box end_at(const SymmetricLoop& loop, const Box& u, int p, double value, const E
 // Float Newton on R with side p held at its midpoint, from x.
 std::optional<Eigen::Vector3d> newton_point(const SymmetricLoop& loop, Eigen::Vector3d x, int p) {
   const auto y = others(p);
+  Eigen::Vector2d r;
+  Eigen::Matrix<double, 2, 3> j;
   for (int it = 0; it < 12; ++it) {
-    const Eigen::VectorXd r = newton::midpoint(loop.r_values(point(x)));
-    const Eigen::MatrixXd j = newton::midpoint(loop.r_jacobian(point(x)));
+    loop.r_at(x, r, j);
     Eigen::Matrix2d jy;
     jy << j(0, y[0]), j(0, y[1]), j(1, y[0]), j(1, y[1]);
-    const Eigen::Vector2d d = jy.partialPivLu().solve(Eigen::Vector2d(r(0), r(1)));
+    const Eigen::Vector2d d = jy.partialPivLu().solve(r);
     if (!d.allFinite()) return std::nullopt;
     x(y[0]) -= d(0);
     x(y[1]) -= d(1);
     if (d.lpNorm<Eigen::Infinity>() < 1e-15) break;
   }
   return x;
+}
+
+// R's Jacobian at a point, in floating point.
+Eigen::Matrix<double, 2, 3> jacobian_at(const SymmetricLoop& loop, const Eigen::Vector3d& x) {
+  Eigen::Vector2d r;
+  Eigen::Matrix<double, 2, 3> j;
+  loop.r_at(x, r, j);
+  return j;
 }
 
 // Whether T(u) = I is excluded on u: the quaternion's scalar part stays inside (-1, 1).
@@ -208,16 +222,22 @@ bool piece_empty(const SymmetricLoop& loop, const Box& uv, bool& on_subspace) {
 }
 
 
+// An arc certified through a piece, and the float point of it that its test started from.
+struct FoundArc {
+  MapArc arc;
+  Eigen::Vector3d point;
+};
+
 // Tries an arc through the piece: parameters in order of the curve's speed across the piece,
 // Y grown from the piece until the Krawczyk image falls inside it.
-std::optional<MapArc> certify_symmetric(const SymmetricLoop& loop, const Box& uv, size_t member) {
+std::optional<FoundArc> certify_symmetric(const SymmetricLoop& loop, const Box& uv, size_t member) {
   for (int i = 3; i < 6; ++i)
     if (!zero_in(uv[i])) return std::nullopt;
   const Box u = u_of(uv);
   Eigen::Vector3d x(median(u[0]), median(u[1]), median(u[2]));
   const auto rows = loop.choose_rows(uv);
   if (!rows) return std::nullopt;
-  const Eigen::MatrixXd j0 = newton::midpoint(loop.r_jacobian(point(x)));
+  const Eigen::Matrix<double, 2, 3> j0 = jacobian_at(loop, x);
   const Eigen::Vector3d tangent = Eigen::Vector3d(j0.row(0)).cross(Eigen::Vector3d(j0.row(1)));
   std::array<int, 3> order{0, 1, 2};
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
@@ -227,7 +247,7 @@ std::optional<MapArc> certify_symmetric(const SymmetricLoop& loop, const Box& uv
     const auto at = newton_point(loop, x, p);
     if (!at) continue;
     const auto y = others(p);
-    const Eigen::MatrixXd j = newton::midpoint(loop.r_jacobian(point(*at)));
+    const Eigen::Matrix<double, 2, 3> j = jacobian_at(loop, *at);
     Eigen::Matrix2d jy;
     jy << j(0, y[0]), j(0, y[1]), j(1, y[0]), j(1, y[1]);
     const Eigen::FullPivLU<Eigen::Matrix2d> lu(jy);
@@ -257,7 +277,7 @@ std::optional<MapArc> certify_symmetric(const SymmetricLoop& loop, const Box& uv
       m.piece = uv;
       m.arc = std::move(a);
       m.v_preconditioner = rows->c;
-      return m;
+      return FoundArc{std::move(m), *at};
     }
   }
   return std::nullopt;
@@ -357,11 +377,25 @@ struct MemberWalk {
     auto a = certify_symmetric(loop, uv, k);
     if (!a) return false;
     // The arc's box holds the piece's U, and every solution in it lies on the arc: a piece
-    // whose U the arc misses holds none.
-    if (!arc_misses(loop, a->arc, u_of(uv), members[k])) {
-      map.arcs.push_back(std::move(*a));
+    // whose U the arc misses holds none. Its float point inside U and the member shows that
+    // the test could not prove a miss: a certified arc may always be recorded (its points
+    // are solutions), so the float point only saves the test.
+    if (inside(a->point, uv) || !arc_misses(loop, a->arc.arc, u_of(uv), members[k])) {
+      map.arcs.push_back(std::move(a->arc));
       covered.push_back({k});
     }
+    return true;
+  }
+
+  bool inside(const Eigen::Vector3d& point, const Box& uv) const {
+    Box on_arc(6, Interval(0.0));
+    for (int i = 0; i < 3; ++i) {
+      if (!(uv[i].lower() < point(i) && point(i) < uv[i].upper())) return false;
+      on_arc[i] = Interval(point(i));
+    }
+    const Box out = loop.to_output(on_arc);
+    for (size_t i = 0; i < out.size(); ++i)
+      if (!(members[k][i].lower() < out[i].lower() && out[i].upper() < members[k][i].upper())) return false;
     return true;
   }
 };
