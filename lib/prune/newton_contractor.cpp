@@ -3,6 +3,8 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include <cmath>
+
 namespace linkbox::prune {
 
 namespace {
@@ -14,15 +16,23 @@ IntervalNewton::IntervalNewton(const std::vector<model::Polynomial>& equations, 
                                const std::vector<model::Link>& links)
     : system_(equations, links, variables, arith), arith_(arith) {}
 
-// The preconditioner in double (LU and inverse, about n^3 flops at a quarter of an interval
-// product each), then F(y), C F'(X), C F(y) and Gauss-Seidel in intervals.
+// The float LU of the midpoint Jacobian: about n^3/50 operations on large systems, where
+// Eigen's blocked kernels run; below n = 20 its n^2 bookkeeping dominates (measured, see
+// papers/decisions/search.md). A step that finds the LU singular stops there.
+double IntervalNewton::factor_operations() const {
+  const double n = system_.cols();
+  return n * n + std::floor(n * n * n / 50);
+}
+
+// Past the LU: the inverse in double (about n^3/5), then F(y), C F'(X), C F(y) and
+// Gauss-Seidel in intervals.
 double IntervalNewton::solve_operations() const {
   const double m = system_.rows(), n = system_.cols();
-  return 0.25 * n * n * n + n * (system_.nonzeros() + m + n) + system_.value_operations();
+  return std::floor(n * n * n / 5) + n * (system_.nonzeros() + m + n) + system_.value_operations();
 }
 
 double IntervalNewton::step_operations() const {
-  return system_.value_operations() + system_.jacobian_operations() + solve_operations();
+  return system_.value_operations() + system_.jacobian_operations() + factor_operations() + solve_operations();
 }
 
 Outcome IntervalNewton::contract(Box& box) {
@@ -40,7 +50,7 @@ Outcome IntervalNewton::step(Box& box) {
   for (int i = 0; i < m; ++i)
     if (excludes_zero(f_[i])) return Outcome::empty;
   if (m < n || n == 0) return Outcome::unchanged;
-  operations_ += solve_operations();
+  operations_ += factor_operations();
 
   // The float preconditioner: only how much is removed depends on it.
   jm_.setZero(m, n);
@@ -52,8 +62,10 @@ Outcome IntervalNewton::step(Box& box) {
     // test of that; rcond() cost 8% of Eco9's run for the same answer.
     const auto pivots = lu.matrixLU().diagonal().cwiseAbs();
     if (!(pivots.minCoeff() > 1e-14 * pivots.maxCoeff())) return Outcome::unchanged;
+    operations_ += solve_operations();
     c_ = lu.inverse();
   } else {
+    operations_ += solve_operations();
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(jm_);
     if (cod.rank() < n) return Outcome::unchanged;
     c_ = cod.pseudoInverse();

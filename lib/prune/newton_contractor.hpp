@@ -31,7 +31,8 @@ class IntervalNewton final : public Contractor {
 
  private:
   Outcome step(Box& box);
-  double solve_operations() const;
+  double factor_operations() const;  // the midpoint Jacobian's LU
+  double solve_operations() const;   // the rest of a step, once the LU is regular
 
   model::CompiledSystem system_;
   Arith arith_;
