@@ -39,7 +39,7 @@ size_t choose_lead(size_t held, const std::vector<Standing>& now, const Progress
   size_t lead = held;
   double best = -1;
   for (size_t k = 0; k < now.size(); ++k) {
-    // No work counted (its first box capped, race.cpp): it has shown nothing yet.
+    // No work counted: it has shown nothing yet, and 0 work would project as cheapest.
     if (k == held || now[k].work <= 0) continue;
     if (std::max(now[k].tree, now[held].tree) < kMinLeadShare) continue;
     const double ahead = ahead_of(held_progress, now[k]);

@@ -70,6 +70,9 @@ void Lookahead::Run::worker(prune::Sequence& c, Certifier* certify) {
     Node node = pick->listed ? *pick->listed : std::move(a.node);
     if (!pick->listed) la_.open_.erase(pick->path);
     a.mark = Ahead::Mark::busy;
+    // A capped box beyond the top is shrunk again next run from the box as taken, as one
+    // thread would shrink it: so an open box is kept as taken while a cap may stop it.
+    if (cap_ > 0 && !pick->listed) a.node = node;
     lock.unlock();
     Processed p = core_.process(c, certify, std::move(node), cut, stop, cap_);
     lock.lock();
@@ -92,9 +95,13 @@ void Lookahead::Run::commit_done_top() {
       control.paused = true;
       break;
     }
-    // As one thread: the pause is asked before the box, which then ends the run.
+    // As one thread: the pause is asked before the box, which then ends the run, the box
+    // listed as its passes left it.
     if (capped) {
       control.capped = over_ = true;
+      core_.keep_capped(it->second.done);
+      front.pending.back() = std::move(it->second.done.node);
+      la_.ahead_.erase(it);
       break;
     }
     front.pending.pop_back();
@@ -152,7 +159,7 @@ bool Lookahead::Run::keep(const Pick& pick, Ahead& a, Processed&& p) {
   }
   if (p.verdict == Verdict::capped) {
     // Held, not open: no thread takes it again in this run. A listed box is still listed.
-    a = Ahead{Ahead::Mark::capped, pick.listed ? Node{} : std::move(p.node), {}, false, pick.listed != nullptr};
+    a = Ahead{Ahead::Mark::capped, pick.listed ? Node{} : std::move(a.node), std::move(p), false, pick.listed != nullptr};
     return true;
   }
   if (p.verdict == Verdict::split)
@@ -162,6 +169,7 @@ bool Lookahead::Run::keep(const Pick& pick, Ahead& a, Processed&& p) {
         la_.open_.insert(half->path);
       }
   a.mark = Ahead::Mark::done;
+  a.node = Node{};
   la_.work_ += p.work;
   a.done = std::move(p);
   return true;
@@ -176,6 +184,7 @@ void Lookahead::reopen_capped() {
       it = ahead_.erase(it);  // taken from the list again
     } else {
       it->second.mark = Ahead::Mark::open;
+      it->second.done = Processed{};
       open_.insert(it->first);
       ++it;
     }

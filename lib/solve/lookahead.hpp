@@ -45,10 +45,11 @@ class Lookahead {
   // a child of such a box waiting for a thread.
   struct Ahead {
     // remote: lent (or below a lent box), its record not back yet. capped: it passed this
-    // run's cap; the run ends when it reaches the top, and the next run shrinks it again.
+    // run's cap; the run ends when it reaches the top, where it is listed as its passes left
+    // it; one that does not reach it is shrunk again next run, from the box as taken.
     enum class Mark { open, busy, done, remote, capped } mark = Mark::open;
-    Node node;       // open, capped
-    Processed done;  // done
+    Node node;       // open; capped: as taken
+    Processed done;  // done; capped: as far as it got
     bool delivered = false;  // done by another search (not in work_)
     bool listed = false;     // capped: the box is in the list (else `node` holds it)
   };

@@ -16,9 +16,10 @@ constexpr double kFirstTurn = 4000;
 // In the first round a box may cost at most this: a candidate whose first box costs a hundred
 // times the others' whole share (an LP over a large lifted system) would otherwise spend it
 // before any candidate is compared. The cap holds within a pass too (between its LPs), so one
-// pass over a large relaxation cannot overrun it. A capped box is shrunk again, uncapped, next
-// round; its work up to the cap is lost (the counts leave it out). Caps only ever grow (first
-// round, then none), so a box is capped in a look-ahead exactly when one thread would cap it.
+// pass over a large relaxation cannot overrun it. A capped box goes back to the candidate's
+// list as far as its passes shrank it, their work counted, and next round it is shrunk on,
+// uncapped. Caps only ever grow (first round, then none), so a box is capped in a look-ahead
+// exactly when one thread would cap it.
 constexpr double kFirstRoundBoxCap = kFirstTurn;
 
 std::string number(double x) {
@@ -152,7 +153,7 @@ bool Race::copied_twin(size_t k) {
 void Race::note_capped(size_t k) {
   at_.choices.push_back("turn " + number(at_.turn) + ": " + name_of(k) + " stopped at a box costing over " +
                         number(kFirstRoundBoxCap) + " (the first round's cap; " + describe(*racers_[k]->search) +
-                        "): it shrinks that box again next round");
+                        "): it shrinks that box on next round");
 }
 
 // The lead runs first in each round: when it finishes in its turn, the others' shares of that

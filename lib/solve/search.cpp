@@ -54,6 +54,13 @@ void SearchCore::commit(Processed&& p) {
   if (tallies.volume_outside) tallies.volume_outside->store(1 - c.volume_pending, std::memory_order_relaxed);
 }
 
+void SearchCore::keep_capped(const Processed& p) {
+  Committed& c = committed;
+  c.work += p.work;
+  c.volume_pending += volume_ratio(setup.start, p.node.box, setup.split_dims) - p.volume;
+  if (tallies.volume_outside) tallies.volume_outside->store(1 - c.volume_pending, std::memory_order_relaxed);
+}
+
 void SearchCore::run(int threads, double work_limit, double box_cap) {
   const Params& params = setup.params;
   std::mutex m;
@@ -94,10 +101,12 @@ void SearchCore::run(int threads, double work_limit, double box_cap) {
       --busy;
       if (p.verdict == Verdict::capped || p.verdict == Verdict::stopped) {
         // Back where it was taken from, so the next run takes it first.
-        if (p.verdict == Verdict::capped)
+        if (p.verdict == Verdict::capped) {
           control.capped = paused = true;
-        else
+          keep_capped(p);
+        } else {
           control.stopped = true;
+        }
         if (params.order == Order::depth_first)
           pending.push_back(std::move(p.node));
         else

@@ -49,7 +49,7 @@ class Search final : public Lender {
   ~Search() override;
   // True when this search will do no more: it is complete, or the budget stopped it.
   // `box_cap` (with a work limit; 0: none): the run also ends before a box whose own work
-  // passes it, and the box stays pending, as taken (capped() true).
+  // passes it, and the box stays pending as its passes left it, their work counted (capped() true).
   bool run(int threads = 1, double work_limit = 0, double box_cap = 0);  // 0: no limit
   bool complete() const;  // no box pending: every box resolved
   double work() const;

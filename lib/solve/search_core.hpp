@@ -65,6 +65,8 @@ struct SearchCore {
   }
   // Counts a processed box, lists its halves or keeps its solution (and its record).
   void commit(Processed&& p);
+  // Counts the work of a capped box, whose node (as its passes left it) goes back on the list.
+  void keep_capped(const Processed& p);
   // Runs boxes in the list's order on `threads` threads, to the end, the budget, a pause or
   // (on one thread) `work_limit` or a box that passes `box_cap` (process()).
   void run(int threads, double work_limit, double box_cap);

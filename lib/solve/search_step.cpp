@@ -31,6 +31,10 @@ class StopScope {
   bool set_;
 };
 
+bool has_nan(const Box& box) {
+  return std::any_of(box.begin(), box.end(), [](const Interval& x) { return std::isnan(x.lower()) || std::isnan(x.upper()); });
+}
+
 // Shrinks until empty, certified, small, or no longer shrinking by more than rho.
 // `stop` is asked between passes too: one box can take many passes (see
 // papers/decisions/search.md, "NaN bounds").
@@ -60,7 +64,7 @@ Verdict shrink(Box& box, prune::Sequence::Backoff& backoff, prune::Sequence& con
     if (outcome == prune::Outcome::empty) return Verdict::empty;
     // A NaN bound (an overflow in the unverified float variant) proves nothing: the box as it
     // was before the pass is split.
-    if (std::any_of(box.begin(), box.end(), [](const Interval& x) { return std::isnan(x.lower()) || std::isnan(x.upper()); })) {
+    if (has_nan(box)) {
       box = std::move(before);
       return max_width(box, dims) <= params.sigma ? Verdict::solution : Verdict::split;
     }
@@ -104,7 +108,9 @@ Processed process(const Setup& setup, const LogPlace& log, prune::Sequence& c, C
   p.work = std::max(1.0, (c.operations() - operations) / c.operations_per_box()) + (v == Verdict::solution ? kSolutionWork : 0);
   if (v == Verdict::stopped || v == Verdict::capped) {
     c.set_counters(counters_before);  // its work undone in the counts
-    p.node = std::move(taken);
+    // Capped, it keeps what its passes removed (each bound a pass tightened holds, even when
+    // the pass was cut between its LPs) and its work, unless a bound is NaN.
+    p.node = v == Verdict::capped && !has_nan(node.box) ? std::move(node) : std::move(taken);
     p.stats = {};
     return p;
   }

@@ -37,14 +37,14 @@ struct LogPlace {
 
 // stopped: a limit or an interrupt came while the box was being shrunk; it goes back to the
 // list as it was taken, so a resumed search does exactly what an unbroken one would.
-// capped: the box's own work passed the run's cap; it goes back the same way, and the run
-// ends there.
+// capped: the box's own work passed the run's cap; it goes back to the list as its passes
+// left it, its work counted, and the run ends there.
 enum class Verdict { empty, certified, solution, split, stopped, capped };
 
 // One box shrunk, and what its turn in the search does with it.
 struct Processed {
   Verdict verdict = Verdict::stopped;
-  Node node;  // the box: as taken when stopped (it goes back to the list), else as shrunk
+  Node node;  // the box: as taken when stopped (it goes back to the list), else as shrunk so far
   double volume = 0;  // its share of the start box (split dims), as taken
   double work = 0;
   Stats stats;  // this box's counts

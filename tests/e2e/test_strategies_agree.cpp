@@ -204,9 +204,9 @@ TEST_CASE("a search cut at work limits stops at the same box on any number of th
 }
 
 TEST_CASE("a search with capped boxes stops at the same box on any number of threads", "[strategies]") {
-  // A capped box goes back as taken and ends the run; caps grow, then none. Each stop must be
-  // the one-thread search's, and the end the uncapped search's: a capped box's work is left
-  // out, and it is shrunk again from scratch.
+  // A capped box ends the run and goes back as far as its passes shrank it, its work counted;
+  // caps grow, then none. Each stop must be the one-thread search's, and the end must hold the
+  // uncapped search's certified roots.
   const auto one = stops_of_6r(1, 12);
   const auto three = stops_of_6r(3, 12);
   const auto uncapped = stops_of_6r(1, 0);
@@ -217,7 +217,36 @@ TEST_CASE("a search with capped boxes stops at the same box on any number of thr
     CHECK(one[k].capped == three[k].capped);
     test::check_same_state(one[k].state, three[k].state);
   }
-  test::check_same_state(one.back().state, uncapped.back().state);
+  // The box a run capped is the one the next run takes, inside the box the run before listed
+  // under its path, and the capped run's work counts.
+  int kept = 0;
+  for (size_t k = 1; k < one.size(); ++k) {
+    if (!one[k].capped) continue;
+    INFO("stop " << k);
+    CHECK(one[k].state.work > one[k - 1].state.work);
+    const auto& top = one[k].state.pending.back();
+    for (const auto& before : one[k - 1].state.pending)
+      if (before.path == top.path) {
+        CHECK(contains(before.box, top.box));
+        kept += !std::equal(top.box.begin(), top.box.end(), before.box.begin(), [](const Interval& x, const Interval& y) {
+          return x.lower() == y.lower() && x.upper() == y.upper();
+        });
+      }
+  }
+  CHECK(kept >= 1);
+  auto certified = [](const solve::SearchState& s) {
+    std::vector<Box> r;
+    for (const auto& f : s.solutions)
+      if (f.certified) r.push_back(f.box);
+    return r;
+  };
+  const auto roots = certified(one.back().state), reference = certified(uncapped.back().state);
+  REQUIRE(roots.size() == reference.size());
+  for (const auto& a : roots) {
+    int matches = 0;
+    for (const auto& b : reference) matches += verify::boxes_touch(a, b, std::vector<bool>(a.size(), false));
+    CHECK(matches == 1);
+  }
 }
 
 namespace {

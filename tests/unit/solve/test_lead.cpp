@@ -38,8 +38,8 @@ TEST_CASE("the lead passes only 2x cheaper and not behind, to the one furthest a
 }
 
 TEST_CASE("a candidate with no work counted never takes the lead", "[race]") {
-  // Its first box was capped: work 0 and no tree would otherwise project to 0 work, level with
-  // a holder that has resolved nothing either.
+  // Work 0 and no tree would otherwise project to 0 work, level with a holder that has
+  // resolved nothing either.
   const Progress holder{{500, 0.0}};
   CHECK(choose_lead(0, {{500, 0.0}, {0, 0.0}}, holder) == 0);
   CHECK(choose_lead(0, {{500, 0.0}, {0, 0.0}, {600, 0.5}}, holder) == 2);
