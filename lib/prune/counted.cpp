@@ -14,9 +14,13 @@ Outcome Counted::contract(Box& box) {
   Box before = box;
   Counters work_before;
   inner_->add_work(work_before);
+  // Between calls, live_operations() is the counters alone, also after a call that threw.
+  struct Live {
+    double& started;
+    ~Live() { started = -1; }
+  } live{started_};
   started_ = work_before.operations;
   Outcome o = inner_->contract(box);
-  started_ = -1;
   Counters work;
   inner_->add_work(work);
   Counters& c = counters_;

@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <random>
+#include <stdexcept>
 
 using namespace linkbox;
 using model::Polynomial;
@@ -138,4 +139,18 @@ TEST_CASE("a sequence's live count advances within a call, so a cap can stop it 
   Box b = around(root, 0.25);
   cut.contract(b);
   CHECK(cut.operations() < full / 2);
+
+  // A call that throws (here from its stop request) leaves no call under way.
+  const auto thrown_ptr = sequence_of();
+  prune::Sequence& thrown = *thrown_ptr;
+  int asked = 0;
+  const std::function<bool()> fail = [&]() -> bool {
+    if (++asked == 3) throw std::runtime_error("stop");
+    return false;
+  };
+  thrown.stop_when(&fail);
+  Box c = around(root, 0.25);
+  CHECK_THROWS_AS(thrown.contract(c), std::runtime_error);
+  thrown.stop_when(nullptr);
+  CHECK(thrown.live_operations() == thrown.operations());
 }
