@@ -27,7 +27,8 @@ Writes section5.md and section5.csv beside this script, keeps the JSON of the la
 each case in runs/<case>.json (plot_curves.py reads them) and its table row in
 runs/row-<case>-<prune>.json, and prints the markdown. With --cases, the other cases' rows
 are taken from those row files (so a slow case can be re-run alone); --only drops them;
---report-only runs nothing and rewrites the tables from the row files.
+--report-only runs nothing and rewrites the tables from the row files. runs/ is not in git:
+where a case's row file is missing (a fresh checkout), both refuse (exit 2) before running.
 """
 import argparse
 import csv
@@ -238,6 +239,16 @@ def main():
             sys.exit("unknown case %r (known: %s)" % (k, ", ".join(ORDER)))
     json_dir = os.path.join(args.out, "runs")
     os.makedirs(json_dir, exist_ok=True)
+    if (args.cases or args.report_only) and not args.only:
+        # The other cases' rows come from earlier runs here (runs/ is not in git): refuse
+        # before running rather than write tables that silently lack them.
+        run_keys = [] if args.report_only else keys
+        missing = [k for k in ORDER if k not in run_keys and
+                   not any(n.startswith("row-%s-" % k) and n.endswith(".json") for n in os.listdir(json_dir))]
+        if missing:
+            print("section5.py: no earlier rows for %s in %s (a fresh checkout has none): run them too, or "
+                  "pass --only to write tables of these cases alone" % (", ".join(missing), json_dir), file=sys.stderr)
+            sys.exit(2)
     started = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     rows = []
