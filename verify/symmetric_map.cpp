@@ -377,16 +377,34 @@ struct MemberWalk {
     auto a = certify_symmetric(loop, uv, k);
     if (!a) return false;
     // The arc's box holds the piece's U, and every solution in it lies on the arc: a piece
-    // whose U the arc misses holds none. Its float point inside U and the member shows that
-    // the test could not prove a miss: a certified arc may always be recorded (its points
-    // are solutions), so the float point only saves the test.
-    if (inside(a->point, uv) || !arc_misses(loop, a->arc.arc, u_of(uv), members[k])) {
+    // whose U the arc misses holds none. A float point of the arc inside U and the member (the
+    // one its test started from, or one in the middle of a slice of arc_misses) shows that the
+    // test could not prove a miss: a certified arc may always be recorded (its points are
+    // solutions), so the float points only save the test.
+    if (inside(a->point, uv) || sample_inside(a->arc.arc, a->point, uv) ||
+        !arc_misses(loop, a->arc.arc, u_of(uv), members[k])) {
       map.arcs.push_back(std::move(a->arc));
       covered.push_back({k});
     }
     return true;
   }
 
+  // Whether a float point of the arc in the middle of one of arc_misses's slices is inside.
+  bool sample_inside(const newton::Arc& a, const Eigen::Vector3d& point, const Box& uv) const {
+    Interval range;
+    if (!intersect(uv[a.parameter], a.box[a.parameter], range)) return false;
+    constexpr int kSamples = 8;
+    for (int i = 0; i < kSamples; ++i) {
+      Eigen::Vector3d x = point;
+      x(a.parameter) = range.lower() + (i + 0.5) * width_up(range) / kSamples;
+      const auto at = newton_point(loop, x, a.parameter);
+      if (at && inside(*at, uv)) return true;
+    }
+    return false;
+  }
+
+  // Whether a float point (u, 0) lies strictly inside the piece's U and, in the outputs,
+  // inside the member.
   bool inside(const Eigen::Vector3d& point, const Box& uv) const {
     Box on_arc(6, Interval(0.0));
     for (int i = 0; i < 3; ++i) {
