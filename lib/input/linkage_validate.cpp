@@ -11,7 +11,6 @@ namespace linkbox::input {
 
 namespace {
 
-bool same(const Interval& x, const Interval& y) { return x.lower() == y.lower() && x.upper() == y.upper(); }
 std::string quote(const std::string& s) { return "'" + s + "'"; }
 std::string at_line(int line) { return " (line " + std::to_string(line) + ")"; }
 
@@ -101,7 +100,7 @@ class Validator {
         fail(e.line, "joint " + quote(e.joint) + " joins links " + quote(prev) + " -> " + quote(e.link) +
                          " here but " + quote(u.prev) + " -> " + quote(u.next) + there +
                          ": a joint joins the same two links in every loop, passed in the same direction");
-      if (e.prismatic && (!same(e.theta, u.entry->theta) || !same(e.d, u.entry->d)))
+      if (e.prismatic && (!same_bounds(e.theta, u.entry->theta) || !same_bounds(e.d, u.entry->d)))
         fail(e.line, "prismatic joint " + quote(e.joint) + " has another theta or range than" + there);
     }
   }
@@ -120,7 +119,7 @@ class Validator {
   void check_normal(const LoopLink& e, const std::string& next_joint) {
     if (auto [it, fresh] = normals_.emplace(std::make_tuple(e.joint, e.link, next_joint), &e); !fresh) {
       const LoopLink& u = *it->second;
-      if (!same(u.a, e.a) || !same(u.alpha, e.alpha))
+      if (!same_bounds(u.a, e.a) || !same_bounds(u.alpha, e.alpha))
         fail(e.line, "link " + quote(e.link) + " between joints " + quote(e.joint) + " and " + quote(next_joint) +
                          " has other a or alpha than on line " + std::to_string(u.line));
     }

@@ -95,6 +95,11 @@ inline bool is_finite(const Interval& x) {
 
 inline bool contains(const Interval& x, double v) { return x.lower() <= v && v <= x.upper(); }
 
+// The same set: equal bounds. Boost's == compares intervals as uncertain numbers instead.
+inline bool same_bounds(const Interval& a, const Interval& b) {
+  return a.lower() == b.lower() && a.upper() == b.upper();
+}
+
 // Rounded-up width; the plain difference could round below the true width.
 inline double width_up(const Interval& x) {
   RoundingGuard guard;

@@ -30,7 +30,6 @@ Interval padded(const Interval& d) {
 
 }  // namespace
 
-bool same_bounds(const Interval& a, const Interval& b) { return a.lower() == b.lower() && a.upper() == b.upper(); }
 Polynomial one() { return Polynomial::constant(Interval(1.0)); }
 
 std::string format(double x) {

@@ -12,7 +12,6 @@
 
 namespace linkbox::model::detail {
 
-bool same_bounds(const Interval& a, const Interval& b);
 std::string format(double x);  // "%.6g"
 Polynomial one();
 // The k with x in [k*period + shift, (k+1)*period + shift] (closed), if one exists.

@@ -11,8 +11,6 @@ namespace {
 using Function = Application::Function;
 using Chart = Lifting::Chart;
 
-bool same_bounds(const Interval& a, const Interval& b) { return a.lower() == b.lower() && a.upper() == b.upper(); }
-
 // Angle of (c, s) in the plane turned by -centre: within [-pi, pi], except a box across the
 // negative axis, which is enclosed around pi (a root on the seam of a full turn is then
 // reported at one end, the same for every box that holds it).
