@@ -198,13 +198,22 @@ struct Passing {
 // (`passing` is set).
 std::optional<Certificate> test_hull(const SquareSystem& s, const Box& hull, const NewtonOptions& o,
                                      Certificate cert, std::optional<Passing>& passing) {
+  cert.point = to_std(centre_of(hull));
   if (auto ch = inverse(midpoint(s.jacobian(hull)), o.singular_rcond)) {
     NewtonStep hs = newton_step(o.method, s, hull, *ch);
     if (hs.excluded) {
-      cert.image = hs.image, cert.preconditioner = *ch, cert.point = to_std(centre_of(hull));
+      cert.image = hs.image, cert.preconditioner = *ch;
       return fail(cert, Reason::no_root);
     }
-    if (hs.interior) passing = Passing{hull, hs, *ch};
+    if (hs.interior) {
+      passing = Passing{hull, hs, *ch};
+      return std::nullopt;
+    }
+  }
+  if (auto c = combination_exclusion(s, hull)) {
+    cert.method = Method::krawczyk;
+    cert.image = krawczyk_step(s, hull, *c).image, cert.preconditioner = *c;
+    return fail(cert, Reason::no_root);
   }
   return std::nullopt;
 }

@@ -1,5 +1,11 @@
 #include "newton/interval_newton.hpp"
 
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace linkbox::newton {
 
 namespace {
@@ -95,6 +101,26 @@ NewtonStep newton_step(Method m, const SquareSystem& f, const Box& x, const Eige
 bool at_most_one_root(const SquareSystem& f, const Box& y, const Eigen::MatrixXd& c) {
   if (!usable(f, y, c)) return false;
   return norm_inf_upper(identity_minus(c, f.jacobian(y))) < 1.0;
+}
+
+std::optional<Eigen::MatrixXd> combination_exclusion(const SquareSystem& f, const Box& x) {
+  const int n = f.size();
+  constexpr int kLargest = 64;  // the SVD is cubic in n
+  if (n == 0 || n > kLargest) return std::nullopt;
+  const Eigen::MatrixXd jm = midpoint(f.jacobian(x));
+  const Eigen::VectorXd fy = midpoint(f.values(point_box(centre(x).y)));
+  if (!jm.allFinite() || !fy.allFinite()) return std::nullopt;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jm, Eigen::ComputeFullU);
+  const double w = std::max(width_up(x[0]), std::numeric_limits<double>::min());
+  for (int k = n - 1; k >= std::max(0, n - 2); --k) {  // the two smallest singular values
+    const Eigen::VectorXd u = svd.matrixU().col(k);
+    const double g = u.dot(fy);
+    if (!(std::fabs(g) > 0)) continue;
+    Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
+    c.row(0) = std::ldexp(w / g, 30) * u.transpose();
+    if (c.allFinite() && krawczyk_step(f, x, c).excluded) return c;
+  }
+  return std::nullopt;
 }
 
 }  // namespace linkbox::newton

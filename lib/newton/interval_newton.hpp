@@ -7,6 +7,8 @@
 // The centre is y = midpoint of X, so anyone holding (F, X, C) recomputes the same image.
 #include "newton/square_system.hpp"
 
+#include <optional>
+
 namespace linkbox::newton {
 
 enum class Method {
@@ -27,5 +29,16 @@ NewtonStep newton_step(Method m, const SquareSystem& f, const Box& x, const Eige
 // Proves F has at most one root in box `y` (any size): the bound ||I - C F'(y)||_inf < 1
 // makes every Jacobian in F'(y) regular, so F is injective on y (mean-value form).
 bool at_most_one_root(const SquareSystem& f, const Box& y, const Eigen::MatrixXd& c);
+
+// A Krawczyk preconditioner whose step excludes X where the midpoint Jacobian is (nearly)
+// singular, as between the two roots of a close pair: every root makes u . F vanish,
+// for any u, and with u a left singular vector of a small singular value, u . F'(X) is
+// small over X, so the mean-value form u . F(y) + (u . F'(X)) (X - y) can miss 0 where no
+// inverse is usable. As one row (alpha u, the others 0) of C that gives a Krawczyk image
+// y_0 - alpha u . F(y) + (e_0 - alpha u . F'(X)) (X - y), whose side 0 misses X_0 once alpha
+// times that form's distance from 0 exceeds X_0's width; alpha is taken large, so the form
+// missing 0 by 2^-30 of |u . F(y)| suffices. The float SVD only chooses C; the step decides
+// (none: no such C was found).
+std::optional<Eigen::MatrixXd> combination_exclusion(const SquareSystem& f, const Box& x);
 
 }  // namespace linkbox::newton

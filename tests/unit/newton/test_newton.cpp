@@ -198,6 +198,27 @@ TEST_CASE("certify_root: boxes without a root are not certified", "[newton]") {
   CHECK((near.reason == Reason::outside_hull || near.reason == Reason::no_root));
 }
 
+TEST_CASE("certify_root: a box between a close pair of roots is proved empty where no inverse is usable", "[newton]") {
+  auto method = GENERATE(Method::krawczyk, Method::hansen_sengupta);
+  NewtonOptions o;
+  o.method = method;
+  // x^2 = 1e-6 and y = 0: roots (+-1e-3, 0), and the Jacobian diag(2x, 1) is singular on x = 0.
+  const std::vector<Polynomial> pair{var(0) * var(0) - cst(1e-6), var(1)};
+  const Box between{{-1e-4, 1e-4}, {-1e-4, 1e-4}};
+  Certificate c = certify_root(pair, between, {}, o);
+  CHECK(c.reason == Reason::no_root);
+  CHECK(recheck_exclusion(pair, c.box, c.preconditioner, c.method));
+  // Boxes that hold a root, a simple one of the pair or the circle's tangent point: never empty.
+  std::vector<Polynomial> tangent{var(0) * var(0) + var(1) * var(1) - cst(1), var(1) - cst(1)};
+  for (const auto& [f, hull] : {std::pair{pair, Box{{-1e-4, 2e-3}, {-1e-4, 1e-4}}},
+                                std::pair{pair, Box{{-2e-3, 1e-4}, {-1e-4, 1e-4}}},
+                                std::pair{tangent, Box{{-1e-4, 1e-4}, {1 - 1e-4, 1 + 1e-4}}},
+                                std::pair{tangent, Box{{-1e-4, 2e-4}, {1, 1 + 1e-4}}}}) {
+    INFO(linkbox::to_string(hull));
+    CHECK(certify_root(f, hull, {}, o).reason != Reason::no_root);
+  }
+}
+
 TEST_CASE("certify_root: malformed input", "[newton]") {
   CHECK(certify_root(kCircleLine, {{0, 1}, {0, 1}, {0, 1}}).reason == Reason::not_square);
   CHECK(certify_root(kCircleLine, {{0, 1}}).reason == Reason::not_square);
