@@ -308,22 +308,30 @@ bool SymmetricLoop::on_subspace(const Box& uv, const RowChoice& choice) const {
 
 bool SymmetricLoop::excluded(const Box& uv, const RowChoice& choice) const {
   Box mid = uv;
-  for (auto& x : mid) x = Interval(median(x));
+  {
+    const NearestScope nearest;
+    for (auto& x : mid) x = Interval(nearest.median(x));
+  }
   Box along_u = mid;  // U x {v^}
   for (int i = 0; i < 3; ++i) along_u[i] = uv[i];
   const IVector a0 = a_values(mid);
   const IMatrix ju = a_jacobian_u(along_u), jv = a_jacobian_v(uv);
   IVector rhs(12), offset(3);
-  for (int row = 0; row < 12; ++row) {
-    rhs(row) = a0(row);
-    for (int k = 0; k < 3; ++k) rhs(row) += ju(row, k) * (uv[k] - mid[k]);
+  {
+    RoundingGuard guard;  // the sums below in FastInterval: protected operations each switch the mode
+    for (int row = 0; row < 12; ++row) {
+      FastInterval s = as_fast(a0(row));
+      for (int k = 0; k < 3; ++k) s += as_fast(ju(row, k)) * (as_fast(uv[k]) - as_fast(mid[k]));
+      rhs(row) = as_protected(s);
+    }
+    for (int r = 0; r < 3; ++r) offset(r) = as_protected(as_fast(uv[r + 3]) - as_fast(mid[r + 3]));
   }
-  for (int r = 0; r < 3; ++r) offset(r) = uv[r + 3] - mid[r + 3];
   const Eigen::MatrixXd& c = choice.c;
   if (c.rows() != 3 || c.cols() != 12 || !c.allFinite()) return false;
-  const IVector k = -newton::multiply(c, rhs) + newton::multiply(newton::identity_minus(c, jv), offset);
+  const IVector cr = newton::multiply(c, rhs), step = newton::multiply(newton::identity_minus(c, jv), offset);
+  RoundingGuard guard;
   for (int i = 0; i < 3; ++i) {
-    const Interval image = mid[i + 3] + k(i);
+    const FastInterval image = as_fast(mid[i + 3]) + (as_fast(step(i)) - as_fast(cr(i)));
     if (image.upper() < uv[i + 3].lower() || uv[i + 3].upper() < image.lower()) return true;
   }
   return false;

@@ -38,20 +38,28 @@ Box reduced_image(const SymmetricLoop& loop, const Box& u, int p, const Eigen::M
   const auto y = others(p);
   const IMatrix j = loop.r_jacobian(u);
   Box mid = u;
-  for (int i = 0; i < 3; ++i) mid[i] = Interval(median(u[i]));
+  {
+    const NearestScope nearest;
+    for (int i = 0; i < 3; ++i) mid[i] = Interval(nearest.median(u[i]));
+  }
   const IVector r = loop.r_values(mid);
   IVector rhs(2), offset(2);
   IMatrix jy(2, 2);
-  for (int i = 0; i < 2; ++i) {
-    rhs(i) = r(i) + j(i, p) * (u[p] - mid[p]);
-    offset(i) = u[y[i]] - mid[y[i]];
-    for (int k = 0; k < 2; ++k) jy(i, k) = j(i, y[k]);
+  // The few sums here under one RoundingGuard: protected operations each switch the mode.
+  {
+    RoundingGuard guard;
+    for (int i = 0; i < 2; ++i) {
+      rhs(i) = as_protected(as_fast(r(i)) + as_fast(j(i, p)) * (as_fast(u[p]) - as_fast(mid[p])));
+      offset(i) = as_protected(as_fast(u[y[i]]) - as_fast(mid[y[i]]));
+      for (int k = 0; k < 2; ++k) jy(i, k) = j(i, y[k]);
+    }
   }
-  const IVector k = -newton::multiply(c, rhs) + newton::multiply(newton::identity_minus(c, jy), offset);
+  const IVector cr = newton::multiply(c, rhs), step = newton::multiply(newton::identity_minus(c, jy), offset);
   Box image(2);
+  RoundingGuard guard;
   interior = true;
   for (int i = 0; i < 2; ++i) {
-    image[i] = mid[y[i]] + k(i);
+    image[i] = as_protected(as_fast(mid[y[i]]) + (as_fast(step(i)) - as_fast(cr(i))));
     interior = interior && is_finite(image[i]) && u[y[i]].lower() < image[i].lower() &&
                image[i].upper() < u[y[i]].upper();
   }
@@ -191,16 +199,22 @@ bool reduced_empty(const SymmetricLoop& loop, const Box& uv) {
   const Box u = u_of(uv);
   if (!not_identity(loop, u)) return false;
   const IVector r = loop.r_values(u);
-  if (!zero_in(r(0)) || !zero_in(r(1))) return true;
+  if (excludes_zero(r(0)) || excludes_zero(r(1))) return true;
   // The mean-value form, tighter where U is narrow: R(U) within R(u^) + R_u(U) (U - u^).
   Box mid = u;
-  for (auto& x : mid) x = Interval(median(x));
+  {
+    const NearestScope nearest;
+    for (auto& x : mid) x = Interval(nearest.median(x));
+  }
   const IVector r0 = loop.r_values(mid);
   const IMatrix j = loop.r_jacobian(u);
-  for (int i = 0; i < 2; ++i) {
-    Interval range = r0(i);
-    for (int k = 0; k < 3; ++k) range += j(i, k) * (u[k] - mid[k]);
-    if (!zero_in(range)) return true;
+  {
+    RoundingGuard guard;
+    for (int i = 0; i < 2; ++i) {
+      FastInterval range = as_fast(r0(i));
+      for (int k = 0; k < 3; ++k) range += as_fast(j(i, k)) * (as_fast(u[k]) - as_fast(mid[k]));
+      if (excludes_zero(range)) return true;
+    }
   }
   return false;
 }
@@ -211,7 +225,7 @@ bool piece_empty(const SymmetricLoop& loop, const Box& uv, bool& on_subspace) {
   if (!on_subspace) {
     const IVector d = loop.d_values(uv);
     for (int i = 0; i < d.size(); ++i)
-      if (!zero_in(d(i))) return true;
+      if (excludes_zero(d(i))) return true;
     const auto rows = loop.choose_rows(uv);
     if (!rows) return false;
     if (loop.excluded(uv, *rows)) return true;

@@ -50,6 +50,28 @@ using Interval =
 using FastInterval = bi::unprotect<Interval>::type;
 using RoundingGuard = Interval::traits_type::rounding;
 
+// Round-to-nearest for one scope, the mode found put back at its end: many midpoints under
+// one switch of the mode, where median() of an Interval switches it four times.
+class NearestScope {
+ public:
+  NearestScope() {
+    arith_.get_rounding_mode(found_);
+    arith_.to_nearest();
+  }
+  ~NearestScope() { arith_.set_rounding_mode(found_); }
+  NearestScope(const NearestScope&) = delete;
+  NearestScope& operator=(const NearestScope&) = delete;
+  // median(x): NaN for an empty x, else (lower + upper) / 2 rounded to nearest.
+  double median(const Interval& x) const {
+    if (!(x.lower() <= x.upper())) return std::numeric_limits<double>::quiet_NaN();
+    return (x.lower() + x.upper()) / 2;
+  }
+
+ private:
+  RoundedArith arith_;
+  RoundedArith::rounding_mode found_;
+};
+
 // The same bounds in the other arithmetic (no rounding: the ends are copied).
 inline FastInterval as_fast(const Interval& x) { return FastInterval(x.lower(), x.upper()); }
 inline Interval as_protected(const FastInterval& x) { return Interval(x.lower(), x.upper()); }
@@ -91,6 +113,13 @@ inline bool intersect(const Interval& a, const Interval& b, Interval& out) {
 
 inline bool is_finite(const Interval& x) {
   return std::isfinite(x.lower()) && std::isfinite(x.upper());
+}
+
+// An interval that provably misses 0. NaN bounds (an overflowed evaluation) prove nothing,
+// where Boost's !zero_in(x) would take such an interval for an empty one.
+template <class I>
+bool excludes_zero(const I& x) {
+  return x.lower() > 0 || x.upper() < 0;
 }
 
 inline bool contains(const Interval& x, double v) { return x.lower() <= v && v <= x.upper(); }

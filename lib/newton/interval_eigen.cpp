@@ -21,14 +21,16 @@ IMatrix to_interval(const Eigen::MatrixXd& a) {
 
 Eigen::MatrixXd midpoint(const IMatrix& a) {
   Eigen::MatrixXd r(a.rows(), a.cols());
+  const NearestScope nearest;
   for (Eigen::Index i = 0; i < a.rows(); ++i)
-    for (Eigen::Index j = 0; j < a.cols(); ++j) r(i, j) = median(a(i, j));
+    for (Eigen::Index j = 0; j < a.cols(); ++j) r(i, j) = nearest.median(a(i, j));
   return r;
 }
 
 Eigen::VectorXd midpoint(const IVector& v) {
   Eigen::VectorXd r(v.size());
-  for (Eigen::Index i = 0; i < v.size(); ++i) r(i) = median(v(i));
+  const NearestScope nearest;
+  for (Eigen::Index i = 0; i < v.size(); ++i) r(i) = nearest.median(v(i));
   return r;
 }
 

@@ -31,8 +31,6 @@ Outcome finish(Box& box, Box&& contracted) {
   return changed ? Outcome::shrunk : Outcome::unchanged;
 }
 
-bool excludes_zero(const Interval& v) { return v.lower() > 0 || v.upper() < 0; }
-
 // Narrows box[var] to its intersection with `range`; false when empty. Sets `moved` when
 // the interval changed.
 bool narrow(Box& box, int var, const Interval& range, bool& moved) {

@@ -7,11 +7,6 @@
 
 namespace linkbox::prune {
 
-namespace {
-// An interval that provably misses 0. NaN bounds (an overflowed evaluation) prove nothing.
-bool excludes_zero(const FastInterval& x) { return x.lower() > 0 || x.upper() < 0; }
-}  // namespace
-
 IntervalNewton::IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, Arith arith,
                                const std::vector<model::Link>& links)
     : system_(equations, links, variables, arith), arith_(arith) {}

@@ -8,8 +8,6 @@ namespace linkbox::prune {
 
 namespace {
 
-bool excludes_zero(const FastInterval& x) { return x.lower() > 0 || x.upper() < 0; }
-
 bool finite(double x) { return std::isfinite(x); }
 
 }  // namespace
@@ -46,22 +44,23 @@ void TaylorRelaxation::add_corner_rows(const Box& box, bool upper_corner, lp::Li
   for (int j = 0; j < n; ++j) corner_[j] = upper_corner ? box[j].upper() : box[j].lower();
   at_corner_.resize(m);
   with_rounding(arith_, [&] { system_->values_at(corner_.data(), at_corner_.data()); });
-  // Each entry's two right-hand-side products in Interval, which sets the rounding mode.
+  // Each entry's two right-hand-side products. They round outward in either arithmetic.
   operations_ += system_->value_operations() + 8.0 * system_->nonzeros();
   std::vector<std::vector<std::pair<int, double>>> low(m), high(m);
-  std::vector<Interval> low_rhs(m, Interval(0.0)), high_rhs(m, Interval(0.0));
+  std::vector<FastInterval> low_rhs(m, FastInterval(0.0)), high_rhs(m, FastInterval(0.0));
+  RoundingGuard guard;
   for (int e = 0; e < system_->nonzeros(); ++e) {
     const int r = system_->entry_row(e), j = system_->entry_col(e);
     const double a = upper_corner ? jacobian_[e].upper() : jacobian_[e].lower();
     const double b = upper_corner ? jacobian_[e].lower() : jacobian_[e].upper();
     low[r].push_back({j, a});
     high[r].push_back({j, b});
-    low_rhs[r] += Interval(a) * Interval(corner_[j]);
-    high_rhs[r] += Interval(b) * Interval(corner_[j]);
+    low_rhs[r] += FastInterval(a) * FastInterval(corner_[j]);
+    high_rhs[r] += FastInterval(b) * FastInterval(corner_[j]);
   }
   for (int r = 0; r < m; ++r) {
-    const double at_most = (low_rhs[r] - Interval(at_corner_[r].lower())).upper();
-    const double at_least = (high_rhs[r] - Interval(at_corner_[r].upper())).lower();
+    const double at_most = (low_rhs[r] - FastInterval(at_corner_[r].lower())).upper();
+    const double at_least = (high_rhs[r] - FastInterval(at_corner_[r].upper())).lower();
     auto usable = [](const std::vector<std::pair<int, double>>& row, double bound) {
       if (!finite(bound) || row.empty()) return false;
       for (auto& [j, c] : row)

@@ -264,6 +264,43 @@ TEST_CASE("interval: FastInterval inside a RoundingGuard gives the same enclosur
   }
 }
 
+TEST_CASE("interval: NearestScope's midpoints are median's, in any mode, which it restores", "[interval]") {
+  std::mt19937_64 rng(11);
+  std::vector<Interval> xs;
+  for (int k = 0; k < 100; ++k) xs.push_back(random_interval(rng, k % 3 - 1));
+  xs.push_back(Interval(opaque(1.0), opaque(1.0) + 0x1p-52));  // the sum's last bit is rounded
+  std::vector<double> reference, scoped;
+  for (const Interval& x : xs) reference.push_back(median(x));
+  int inside = 0;
+  {
+    RoundingGuard guard;  // upward, as where the map's Krawczyk steps take their midpoints
+    {
+      const NearestScope nearest;
+      for (const Interval& x : xs) scoped.push_back(nearest.median(x));
+      inside = std::fegetround();
+    }
+    CHECK(std::fegetround() == FE_UPWARD);
+  }
+  CHECK(inside == FE_TONEAREST);
+  CHECK(std::fegetround() == FE_TONEAREST);
+  REQUIRE(scoped.size() == reference.size());
+  for (size_t k = 0; k < xs.size(); ++k) {
+    INFO("interval " << k);
+    CHECK(scoped[k] == reference[k]);
+  }
+  const NearestScope nearest;
+  CHECK(std::isnan(nearest.median(Interval(opaque(2.0), opaque(1.0)))));  // empty, as median says
+}
+
+TEST_CASE("interval: excludes_zero proves nothing from NaN bounds", "[interval]") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CHECK(excludes_zero(Interval(1.0, 2.0)));
+  CHECK(excludes_zero(FastInterval(-2.0, -1.0)));
+  CHECK_FALSE(excludes_zero(Interval(-1.0, 0.0)));
+  CHECK_FALSE(excludes_zero(FastInterval(nan, nan)));
+  CHECK_FALSE(excludes_zero(FastInterval(nan, 1.0)));
+}
+
 TEST_CASE("rigorous: decimal literals are tight enclosures of the decimal", "[interval][rigorous]") {
   const Interval x = rigorous::decimal("0.0175");
   CHECK(contains_rational(x, 175, 10000));
