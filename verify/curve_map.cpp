@@ -234,7 +234,7 @@ Near near_singular(const std::vector<SingularPoint>& points, std::uint64_t chart
 bool piece_empty(const std::vector<model::Polynomial>& all, const std::shared_ptr<const model::CompiledSystem>& kept,
                  const Box& piece) {
   for (auto& e : all)
-    if (!zero_in(e.eval(piece))) return true;
+    if (excludes_zero(e.eval(piece))) return true;
   return newton::arc_excluded(kept, piece);
 }
 

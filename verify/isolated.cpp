@@ -37,7 +37,7 @@ std::vector<std::vector<int>> square_subsystems(const std::vector<model::Polynom
 bool excludes(const formulate::NaturalSystem& sys, int e, const Box& box) {
   const int m = static_cast<int>(sys.equations.size());
   if (e < 0 || e >= m + static_cast<int>(sys.links.size())) return false;
-  return e < m ? !zero_in(sys.equations[e].eval(box)) : !model::may_hold(sys.links[e - m], box);
+  return e < m ? excludes_zero(sys.equations[e].eval(box)) : !model::may_hold(sys.links[e - m], box);
 }
 
 namespace {

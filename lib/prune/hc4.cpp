@@ -97,11 +97,13 @@ Outcome Hc4::revise(Box& box) {
     prefix_[0] = suffix_[n] = FastInterval(0.0);
     for (size_t m = 0; m < n; ++m) prefix_[m + 1] = prefix_[m] + value_[m];
     for (size_t m = n; m-- > 0;) suffix_[m] = suffix_[m + 1] + value_[m];
+    // A NaN bound in any term reaches the sum; it proves nothing, so the row is skipped.
+    if (std::isnan(prefix_[n].lower()) || std::isnan(prefix_[n].upper())) continue;
     if (inequality) {
       // g <= 0 fails throughout when g > 0 (a strict one also when g >= 0).
       const double g = prefix_[n].lower();
       if (strict_[row - equation_count_] ? g >= 0 : g > 0) return Outcome::empty;
-    } else if (!zero_in(prefix_[n])) {
+    } else if (excludes_zero(prefix_[n])) {
       return Outcome::empty;
     }
     for (size_t m = 0; m < n; ++m) {

@@ -165,3 +165,11 @@ TEST_CASE("hc4 proves a box empty and narrows x^2 = 4 to its two roots' hull", "
   CHECK(contains(c[0], 2.0));
   CHECK(width(c[0]) < 1e-12);
 }
+
+TEST_CASE("hc4 proves nothing from a sum with NaN bounds", "[hc4]") {
+  // x - y at x = y = +inf sums inf - inf: both bounds are NaN, which is no proof of emptiness.
+  const Polynomial f = Polynomial::variable(0) - Polynomial::variable(1);
+  prune::Hc4 h({f});
+  Box b{Interval(kInf, kInf), Interval(kInf, kInf)};
+  CHECK(h.contract(b) != prune::Outcome::empty);
+}
