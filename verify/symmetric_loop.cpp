@@ -307,11 +307,7 @@ bool SymmetricLoop::on_subspace(const Box& uv, const RowChoice& choice) const {
 }
 
 bool SymmetricLoop::excluded(const Box& uv, const RowChoice& choice) const {
-  Box mid = uv;
-  {
-    const NearestScope nearest;
-    for (auto& x : mid) x = Interval(nearest.median(x));
-  }
+  const Box mid = centre_box(uv);
   Box along_u = mid;  // U x {v^}
   for (int i = 0; i < 3; ++i) along_u[i] = uv[i];
   const IVector a0 = a_values(mid);

@@ -37,11 +37,7 @@ bool finite(const Box& b) {
 Box reduced_image(const SymmetricLoop& loop, const Box& u, int p, const Eigen::MatrixXd& c, bool& interior) {
   const auto y = others(p);
   const IMatrix j = loop.r_jacobian(u);
-  Box mid = u;
-  {
-    const NearestScope nearest;
-    for (int i = 0; i < 3; ++i) mid[i] = Interval(nearest.median(u[i]));
-  }
+  const Box mid = centre_box(u);
   const IVector r = loop.r_values(mid);
   IVector rhs(2), offset(2);
   IMatrix jy(2, 2);
@@ -201,11 +197,7 @@ bool reduced_empty(const SymmetricLoop& loop, const Box& uv) {
   const IVector r = loop.r_values(u);
   if (excludes_zero(r(0)) || excludes_zero(r(1))) return true;
   // The mean-value form, tighter where U is narrow: R(U) within R(u^) + R_u(U) (U - u^).
-  Box mid = u;
-  {
-    const NearestScope nearest;
-    for (auto& x : mid) x = Interval(nearest.median(x));
-  }
+  const Box mid = centre_box(u);
   const IVector r0 = loop.r_values(mid);
   const IMatrix j = loop.r_jacobian(u);
   {

@@ -42,6 +42,13 @@ double volume_ratio(const Box& before, const Box& after, std::span<const int> di
   return r;
 }
 
+Box centre_box(const Box& box) {
+  Box c(box.size());
+  const NearestScope nearest;
+  for (size_t i = 0; i < box.size(); ++i) c[i] = Interval(nearest.median(box[i]));
+  return c;
+}
+
 std::pair<Box, Box> bisect(const Box& box, int dim) {
   Box a = box, b = box;
   double m = median(box[dim]);

@@ -20,6 +20,9 @@ int widest_dimension(const Box& box, std::span<const int> dims = {});
 // neither underflows nor overflows with many dimensions. Zero-width sides count as ratio 1.
 double volume_ratio(const Box& before, const Box& after, std::span<const int> dims = {});
 
+// The point box of the sides' midpoints (median's values).
+Box centre_box(const Box& box);
+
 // Splits dimension `dim` at its midpoint.
 std::pair<Box, Box> bisect(const Box& box, int dim);
 

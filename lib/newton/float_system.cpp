@@ -39,7 +39,8 @@ Eigen::VectorXd FloatSystem::solve_from(Eigen::VectorXd x) const {
 
 Eigen::VectorXd centre(const Box& b) {
   Eigen::VectorXd c(b.size());
-  for (size_t i = 0; i < b.size(); ++i) c(i) = median(b[i]);
+  const NearestScope nearest;
+  for (size_t i = 0; i < b.size(); ++i) c(i) = nearest.median(b[i]);
   return c;
 }
 

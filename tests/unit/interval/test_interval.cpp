@@ -3,6 +3,7 @@
 // exact rationals (GMP) or directed-rounding MPFR at 128/256 bits, never against doubles.
 // Operands go through `opaque` so the compiler cannot fold the arithmetic at compile time
 // (the -O3 failure in lib/README.md was exactly such a fold); a second copy uses literals.
+#include "interval/box.hpp"
 #include "interval/interval.hpp"
 #include "interval/rigorous.hpp"
 
@@ -264,7 +265,7 @@ TEST_CASE("interval: FastInterval inside a RoundingGuard gives the same enclosur
   }
 }
 
-TEST_CASE("interval: NearestScope's midpoints are median's, in any mode, which it restores", "[interval]") {
+TEST_CASE("interval: NearestScope's and centre_box's midpoints are median's, in any mode", "[interval]") {
   std::mt19937_64 rng(11);
   std::vector<Interval> xs;
   for (int k = 0; k < 100; ++k) xs.push_back(random_interval(rng, k % 3 - 1));
@@ -287,6 +288,16 @@ TEST_CASE("interval: NearestScope's midpoints are median's, in any mode, which i
   for (size_t k = 0; k < xs.size(); ++k) {
     INFO("interval " << k);
     CHECK(scoped[k] == reference[k]);
+  }
+  Box centred;
+  {
+    RoundingGuard guard;
+    centred = centre_box(Box(xs.begin(), xs.end()));
+  }
+  for (size_t k = 0; k < xs.size(); ++k) {
+    INFO("side " << k);
+    CHECK(centred[k].lower() == reference[k]);
+    CHECK(centred[k].upper() == reference[k]);
   }
   const NearestScope nearest;
   CHECK(std::isnan(nearest.median(Interval(opaque(2.0), opaque(1.0)))));  // empty, as median says
