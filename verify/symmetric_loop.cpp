@@ -17,19 +17,24 @@ using newton::IVector;
 namespace {
 
 using F = FastInterval;
-template <class T>
-using M44 = std::array<std::array<T, 4>, 4>;
-
 F fast(const Interval& x) { return F(x.lower(), x.upper()); }
 Interval safe(const F& x) { return Interval(x.lower(), x.upper()); }
 
 template <class T>
-M44<T> times(const M44<T>& x, const M44<T>& y) {
-  M44<T> r;
-  for (int i = 0; i < 4; ++i)
+using M34 = std::array<std::array<T, 4>, 3>;
+
+// Rows 0-2 of x y (only x's rows 0-2 enter them) for y whose row 3 is
+// (0, 0, 0, y33), y33 exactly 1 or 0: the terms of row 3 are x[i][3] or exact zeros, so
+// leaving them out of the sums changes no bound.
+template <class T>
+M34<T> affine_times(const M34<T>& x, const M34<T>& y, bool y33) {
+  M34<T> r;
+  for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 4; ++j) {
-      T s(0.0);
-      for (int k = 0; k < 4; ++k) s += x[i][k] * y[k][j];
+      T s = x[i][0] * y[0][j];
+      s += x[i][1] * y[1][j];
+      s += x[i][2] * y[2][j];
+      if (j == 3 && y33) s += x[i][3];
       r[i][j] = s;
     }
   return r;
@@ -122,30 +127,25 @@ SymmetricLoop::Trig<F> SymmetricLoop::trig(const Angles& theta) {
 // (whose last row is 0).
 template <class T>
 SymmetricLoop::M34<T> SymmetricLoop::chain(const Parameters<T>& p, const Trig<T>& t, int derivative, bool inverse) {
-  M44<T> product;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) product[i][j] = T(i == j ? 1.0 : 0.0);
+  M34<T> product;
   for (int step = 0; step < 3; ++step) {
     const int i = inverse ? 2 - step : step;
     const T &c = t.c[i], &s = t.s[i];
     const bool diff = derivative == i;
     // d/dtheta maps (c, s) to (-s, c) and drops the constant parts.
-    const T c1 = diff ? T(-s) : c, s1 = diff ? c : s, one(diff ? 0.0 : 1.0);
+    const T c1 = diff ? T(-s) : c, s1 = diff ? c : s;
     const T &ca = p.cos_alpha[i], &sa = p.sin_alpha[i], &a = p.a[i], &d = p.d[i];
     const T z(0.0), zd = diff ? z : d, zd_sa = diff ? z : T(-d * sa), zd_ca = diff ? z : T(-d * ca),
                     za = diff ? z : T(-a);
-    M44<T> m;
+    M34<T> m;
     if (!inverse)
-      m = {{{c1, -s1 * ca, s1 * sa, c1 * a}, {s1, c1 * ca, -c1 * sa, s1 * a}, {z, diff ? z : sa, diff ? z : ca, zd},
-            {z, z, z, one}}};
+      m = {{{c1, -s1 * ca, s1 * sa, c1 * a}, {s1, c1 * ca, -c1 * sa, s1 * a}, {z, diff ? z : sa, diff ? z : ca, zd}}};
     else
-      m = {{{c1, s1, z, za}, {-s1 * ca, c1 * ca, diff ? z : sa, zd_sa}, {s1 * sa, -c1 * sa, diff ? z : ca, zd_ca},
-            {z, z, z, one}}};
-    product = times(product, m);
+      m = {{{c1, s1, z, za}, {-s1 * ca, c1 * ca, diff ? z : sa, zd_sa}, {s1 * sa, -c1 * sa, diff ? z : ca, zd_ca}}};
+    // Row 3 of m is (0, 0, 0, 1), or (0, 0, 0, 0) for the derivative's factor.
+    product = step == 0 ? m : affine_times(product, m, !diff);
   }
-  M34<T> r;
-  for (int i = 0; i < 3; ++i) r[i] = product[i];
-  return r;
+  return product;
 }
 
 template <class T>
