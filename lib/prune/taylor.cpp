@@ -59,6 +59,7 @@ void TaylorRelaxation::add_corner_rows(const Box& box, bool upper_corner, lp::Li
     high_rhs[r] += FastInterval(b) * FastInterval(corner_[j]);
   }
   for (int r = 0; r < m; ++r) {
+    if (upper_corner && point_row_[r]) continue;  // the lower corner's ranged row holds it
     const double at_most = (low_rhs[r] - FastInterval(at_corner_[r].lower())).upper();
     const double at_least = (high_rhs[r] - FastInterval(at_corner_[r].upper())).lower();
     auto usable = [](const std::vector<std::pair<int, double>>& row, double bound) {
@@ -67,9 +68,23 @@ void TaylorRelaxation::add_corner_rows(const Box& box, bool upper_corner, lp::Li
         if (!finite(c)) return false;
       return true;
     };
-    if (usable(low[r], at_most)) program.add_row(low[r], -kInf, at_most);
-    if (usable(high[r], at_least)) program.add_row(high[r], at_least, kInf);
+    const bool below = usable(low[r], at_most), above = usable(high[r], at_least);
+    if (point_row_[r] && below && above) {
+      program.add_row(low[r], at_least, at_most);
+      continue;
+    }
+    if (below) program.add_row(low[r], -kInf, at_most);
+    if (above) program.add_row(high[r], at_least, kInf);
   }
+}
+
+// A row whose Jacobian entries over the box are all points (a linear equation, at least) has
+// the same coefficients in its two rows and at both corners: its relaxation is the one slab
+// between them, which the lower corner's rows give as a single ranged row.
+void TaylorRelaxation::find_point_rows() {
+  point_row_.assign(system_->rows(), 1);
+  for (int e = 0; e < system_->nonzeros(); ++e)
+    if (jacobian_[e].lower() != jacobian_[e].upper()) point_row_[system_->entry_row(e)] = 0;
 }
 
 bool TaylorRelaxation::relax(const Box& box, lp::LinearProgram& program) {
@@ -80,6 +95,7 @@ bool TaylorRelaxation::relax(const Box& box, lp::LinearProgram& program) {
   operations_ += system_->value_operations() + system_->jacobian_operations();
   for (const FastInterval& f : range_)
     if (excludes_zero(f)) return false;
+  find_point_rows();
   program.clear();
   for (const Interval& x : box) program.add_column(x.lower(), x.upper());
   add_corner_rows(box, false, program);

@@ -7,7 +7,9 @@
 // c_j = X_j.hi. A root makes both bounds enclose 0: two LP rows per corner whose coefficients
 // are the doubles J_j.lo, J_j.hi exactly and whose right-hand sides are rounded outward, so
 // the LP's feasible set holds every root in X. Two opposite corners (every lower bound, every
-// upper bound); then each variable is minimised and maximised (lp/tighten.hpp). Unlike the
+// upper bound); a row whose Jacobian is a point over X (a linear equation) gives the same
+// coefficients four times, and one ranged row. Then each variable is minimised and maximised
+// (lp/tighten.hpp). Unlike the
 // L/P/H relaxation (lp), it needs no lifting: n columns, however the system is written.
 #include "model/compiled.hpp"
 #include "prune/contractor.hpp"
@@ -34,6 +36,7 @@ class TaylorRelaxation final : public Contractor {
  private:
   TaylorRelaxation(std::shared_ptr<const model::CompiledSystem> system, lp::LpBackend backend, Arith arith);
   void add_corner_rows(const Box& box, bool upper_corner, lp::LinearProgram& program);
+  void find_point_rows();
 
   std::shared_ptr<const model::CompiledSystem> system_;  // shared read-only by clones
   lp::LpBackend backend_;
@@ -45,6 +48,7 @@ class TaylorRelaxation final : public Contractor {
   // Scratch: F over the box, J over the box, F at a corner; the corner.
   std::vector<FastInterval> range_, jacobian_, at_corner_;
   std::vector<double> corner_;
+  std::vector<char> point_row_;  // per row: every Jacobian entry a point over the box
   std::vector<int> columns_;  // every variable: all are minimised and maximised
 };
 

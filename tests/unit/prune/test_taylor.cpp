@@ -24,7 +24,8 @@ struct Planted {
   std::vector<double> root;
 };
 
-Planted planted(int n, std::mt19937& rng) {
+// The first `linear` equations have no quadratic part.
+Planted planted(int n, std::mt19937& rng, int linear = 0) {
   std::uniform_int_distribution<int> coef(-16, 16), at(-24, 24);
   Planted p;
   for (int j = 0; j < n; ++j) p.root.push_back(at(rng) / 16.0);
@@ -34,7 +35,8 @@ Planted planted(int n, std::mt19937& rng) {
     Polynomial f;
     for (int j = 0; j < n; ++j) {
       f += d[j] * Interval(coef(rng) / 8.0 + (i == j ? 4 : 0));
-      for (int k = j; k < n; ++k) f += d[j] * d[k] * Interval(coef(rng) / 8.0);
+      if (i >= linear)
+        for (int k = j; k < n; ++k) f += d[j] * d[k] * Interval(coef(rng) / 8.0);
     }
     p.equations.push_back(f);
   }
@@ -83,6 +85,30 @@ TEST_CASE("Taylor relaxation rows hold at the planted root (rational check)", "[
     rows += lp.num_rows();
   }
   CHECK(rows > 0);
+}
+
+TEST_CASE("Taylor relaxation: a linear equation is one ranged row that holds at the root", "[taylor]") {
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int n = 2 + trial % 4, linear = 1 + trial % (n - 1);
+    const Planted p = planted(n, rng, linear);
+    TaylorRelaxation taylor(p.equations, p.root.size(), LpBackend::safe, Arith::verified);
+    const Box box = box_around(p.root, rng);
+    LinearProgram lp;
+    REQUIRE(taylor.relax(box, lp));
+    // Linear rows: one slab each; the others: two rows at each of the two corners.
+    CHECK(lp.num_rows() == linear + 4 * (n - linear));
+    int ranged = 0;
+    for (int r = 0; r < lp.num_rows(); ++r) {
+      INFO("trial " << trial << " row " << r);
+      REQUIRE(holds_exactly(lp, r, p.root));
+      ranged += std::isfinite(lp.row_lo[r]) && std::isfinite(lp.row_hi[r]);
+    }
+    CHECK(ranged == linear);
+    Box contracted = box;
+    for (int pass = 0; pass < 10 && taylor.contract(contracted) == Outcome::shrunk; ++pass) REQUIRE(holds(contracted, p.root));
+    REQUIRE(holds(contracted, p.root));
+  }
 }
 
 TEST_CASE("Taylor relaxation keeps the planted root and closes in on it", "[taylor]") {
