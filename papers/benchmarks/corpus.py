@@ -50,13 +50,17 @@ NOTES = {
         "linkbox's search ends at the limit with one solution box (every x_i = 2*pi, as in "
         "Trigo1-0100sp); certifying it in 2001 unknowns took minutes until c8d533c (30 tightening "
         "rounds at 0.5 s, an SVD of the 2001 x 2001 Jacobian), about 7 s since. IbexSolve's set-up "
-        "of the 1000 unknowns does not end before the harness's hard limit."),
+        "of the 1000 unknowns does not end before the harness's hard limit. On 2026-12-06 (an Intel Xeon "
+        "machine, another run beside it) the search reached the limit with its one box still pending, so nothing was certified."),
 }
 EDGE = ("finished in 7.4-7.6 CPU s in the 2026-11-26 run; on 2026-11-28, with other work on the "
         "machine, the same search (same strategy, same boxes) needs 8.0-9.3 s, past the limit.")
 NOTES["polynom/BroydenTri-0090.bch"] = ("linkbox finishes near the limit: 7.4-7.6 CPU s in the 2026-11-26 run, "
                                         "8.0-9.3 s on 2026-11-28 with other work on the machine (past the limit), "
-                                        "7.1 s on 2026-11-29 with the race's cap asked between LPs (d4a943b).")
+                                        "7.1 s on 2026-11-29 with the race's cap asked between LPs (d4a943b). "
+                                        "On 2026-12-06 (an Intel Xeon machine, the auto_vs_fixed run beside it) it timed out: "
+                                        "run alone there it took 12.1 CPU s with c8c514f's build and 12.8 s with e65e965's, "
+                                        "their races' work figures equal: the machine, not the change, moved it.")
 NOTES["polynom/Redeco9.bch"] = "linkbox " + EDGE
 NOTES["non-polynom/trigonometric-05.bch"] = NOTES["non-polynom/Trigonometric-05.bch"]
 NOTES["non-polynom/SjirkBoon.bch"] = (
