@@ -9,8 +9,8 @@
 // the LP's feasible set holds every root in X. Two opposite corners (every lower bound, every
 // upper bound); a row whose Jacobian is a point over X (a linear equation) gives the same
 // coefficients four times, and one ranged row. Then each variable is minimised and maximised
-// (lp/tighten.hpp). Unlike the
-// L/P/H relaxation (lp), it needs no lifting: n columns, however the system is written.
+// (lp/tighten.hpp). Unlike the L/P/H relaxation (lp), it needs no lifting: n columns, however
+// the system is written.
 #include "model/compiled.hpp"
 #include "prune/contractor.hpp"
 #include "prune/lp/lp_solver.hpp"
