@@ -21,26 +21,6 @@ F fast(const Interval& x) { return F(x.lower(), x.upper()); }
 Interval safe(const F& x) { return Interval(x.lower(), x.upper()); }
 
 template <class T>
-using M34 = std::array<std::array<T, 4>, 3>;
-
-// Rows 0-2 of x y (only x's rows 0-2 enter them) for y whose row 3 is
-// (0, 0, 0, y33), y33 exactly 1 or 0: the terms of row 3 are x[i][3] or exact zeros, so
-// leaving them out of the sums changes no bound.
-template <class T>
-M34<T> affine_times(const M34<T>& x, const M34<T>& y, bool y33) {
-  M34<T> r;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 4; ++j) {
-      T s = x[i][0] * y[0][j];
-      s += x[i][1] * y[1][j];
-      s += x[i][2] * y[2][j];
-      if (j == 3 && y33) s += x[i][3];
-      r[i][j] = s;
-    }
-  return r;
-}
-
-template <class T>
 std::array<T, 4> times(const std::array<T, 4>& a, const std::array<T, 4>& b) {
   return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
           a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1], a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
@@ -120,6 +100,23 @@ SymmetricLoop::Trig<F> SymmetricLoop::trig(const Angles& theta) {
     t.s[i] = sc.sin;
   }
   return t;
+}
+
+// Rows 0-2 of x y (only x's rows 0-2 enter them) for y whose row 3 is
+// (0, 0, 0, y33), y33 exactly 1 or 0: the terms of row 3 are x[i][3] or exact zeros, so
+// leaving them out of the sums changes no bound.
+template <class T>
+SymmetricLoop::M34<T> SymmetricLoop::affine_times(const M34<T>& x, const M34<T>& y, bool y33) {
+  M34<T> r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) {
+      T s = x[i][0] * y[0][j];
+      s += x[i][1] * y[1][j];
+      s += x[i][2] * y[2][j];
+      if (j == 3 && y33) s += x[i][3];
+      r[i][j] = s;
+    }
+  return r;
 }
 
 // The product of entries 0-2's transforms Rz(theta) Tz(d) Tx(a) Rx(alpha), or of their

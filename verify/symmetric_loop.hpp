@@ -94,6 +94,8 @@ class SymmetricLoop {
     std::array<T, 3> c, s;  // cos and sin of each angle
   };
   static Trig<F> trig(const Angles& theta);
+  template <class T>
+  static M34<T> affine_times(const M34<T>& x, const M34<T>& y, bool y33);
   // T(theta) (rows 0-2), or with factor k replaced by its derivative; `inverse`: T(theta)^-1.
   template <class T>
   static M34<T> chain(const Parameters<T>& p, const Trig<T>& t, int derivative, bool inverse);

@@ -51,14 +51,18 @@ void SearchCore::commit(Processed&& p) {
     }
   }
   if (tallies.pending) tallies.pending->store(static_cast<long>(c.pending.size()), std::memory_order_relaxed);
-  if (tallies.volume_outside) tallies.volume_outside->store(1 - c.volume_pending, std::memory_order_relaxed);
+  publish_volume();
+}
+
+void SearchCore::publish_volume() {
+  if (tallies.volume_outside) tallies.volume_outside->store(1 - committed.volume_pending, std::memory_order_relaxed);
 }
 
 void SearchCore::keep_capped(const Processed& p) {
   Committed& c = committed;
   c.work += p.work;
   c.volume_pending += volume_ratio(setup.start, p.node.box, setup.split_dims) - p.volume;
-  if (tallies.volume_outside) tallies.volume_outside->store(1 - c.volume_pending, std::memory_order_relaxed);
+  publish_volume();
 }
 
 void SearchCore::run(int threads, double work_limit, double box_cap) {

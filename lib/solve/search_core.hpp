@@ -67,6 +67,7 @@ struct SearchCore {
   void commit(Processed&& p);
   // Counts the work of a capped box, whose node (as its passes left it) goes back on the list.
   void keep_capped(const Processed& p);
+  void publish_volume();  // the volume left, for the progress line
   // Runs boxes in the list's order on `threads` threads, to the end, the budget, a pause or
   // (on one thread) `work_limit` or a box that passes `box_cap` (process()).
   void run(int threads, double work_limit, double box_cap);
