@@ -5,7 +5,8 @@
 //   round-robin  split sides in turn, by depth in the search tree
 //   smear        the side whose variation moves the equations most: for each equation, the
 //                share |df/dx_j| * width_j of its total, summed over equations (IbexSolve's
-//                "smearsumrel"); sides already <= sigma are never chosen
+//                "smearsumrel"); sides already <= sigma are never chosen. On a system that
+//                separates into blocks, only among those of the first one still open
 //   auto         widest on the spherical paper's formulation (its method and tables),
 //                smear otherwise
 #include "formulate/formulation.hpp"
@@ -33,10 +34,13 @@ class Bisector {
 
  private:
   int smear(const Box& box) const;
+  int first_open_block(const Box& box) const;
   Bisect rule_;
   std::vector<int> dims_;
   double sigma_;
   std::shared_ptr<const model::CompiledSystem> compiled_;  // smear only
+  // Smear only: per variable, its block (model/block_triangular.hpp); empty for one block.
+  std::vector<int> block_;
 };
 
 }  // namespace linkbox::solve

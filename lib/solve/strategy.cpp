@@ -1,6 +1,7 @@
 #include "solve/strategy.hpp"
 
 #include "formulate/to_lph.hpp"
+#include "model/lifting.hpp"
 #include "prune/acid.hpp"
 #include "prune/hc4.hpp"
 #include "prune/lifted.hpp"
@@ -53,10 +54,25 @@ std::unique_ptr<Contractor> make_acid(const StrategyOptions& options, const form
   return std::make_unique<prune::Acid>(make_hc4(options, sub), dims);
 }
 
+// The unknowns that stand for a sum raised to a power (model/lifter.cpp): they are there for
+// propagation's sake, and Newton substitutes them out.
+std::vector<int> lifted_sums(const model::System& system) {
+  std::vector<int> r;
+  if (!system.lifting) return r;
+  const model::Lifting& lifting = *system.lifting;
+  for (size_t v = 0; v < lifting.sources.size() && v < system.variables.size(); ++v) {
+    const auto& source = lifting.sources[v];
+    if (source.kind == model::Lifting::Source::Kind::application &&
+        lifting.applications[source.index].function == model::Application::Function::base)
+      r.push_back(static_cast<int>(v));
+  }
+  return r;
+}
+
 std::unique_ptr<Contractor> make_newton(const StrategyOptions& options, const formulate::SubProblem& sub) {
   const model::System& pruned = sub.pruned();
   return std::make_unique<prune::IntervalNewton>(pruned.equations, pruned.variables.size(), options.arith,
-                                                 pruned.links);
+                                                 pruned.links, lifted_sums(pruned));
 }
 
 // One pass of HC4 and Newton over a box, whatever the strategy: every candidate of a race is
@@ -64,7 +80,8 @@ std::unique_ptr<Contractor> make_newton(const StrategyOptions& options, const fo
 double box_operations(const formulate::SubProblem& sub) {
   const model::System& pruned = sub.pruned();
   const prune::Hc4 hc4(pruned.equations, Arith::verified, pruned.inequalities, pruned.links);
-  const prune::IntervalNewton newton(pruned.equations, pruned.variables.size(), Arith::verified, pruned.links);
+  const prune::IntervalNewton newton(pruned.equations, pruned.variables.size(), Arith::verified, pruned.links,
+                                     lifted_sums(pruned));
   return std::max(1.0, hc4.call_operations() + newton.step_operations());
 }
 

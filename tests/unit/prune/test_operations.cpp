@@ -74,10 +74,12 @@ TEST_CASE("propagation and Newton cost their structure on every box", "[operatio
 }
 
 TEST_CASE("a Newton step that finds its midpoint Jacobian singular costs only its LU", "[operations]") {
-  // f = (x0^2 - 1/4, x1 - x0) on [-1, 1]^2: the midpoint of d f0 / d x0 = 2 x0 is 0, so the
-  // step stops after the LU, before the inverse and Gauss-Seidel it would otherwise pay for.
+  // f = (x0^2 + x1^2 - 1/2, x0 x1 - 1/8) on [-1, 1]^2: the midpoint Jacobian (2 x0, 2 x1; x1,
+  // x0) is 0, so the step stops after the LU, before the inverse and Gauss-Seidel it would
+  // otherwise pay for. Both equations hold both unknowns: one block, no block fallback.
   const Polynomial x0 = Polynomial::variable(0), x1 = Polynomial::variable(1);
-  prune::IntervalNewton newton({x0 * x0 - Polynomial::constant(Interval(0.25)), x1 - x0}, 2);
+  prune::IntervalNewton newton(
+      {x0 * x0 + x1 * x1 - Polynomial::constant(Interval(0.5)), x0 * x1 - Polynomial::constant(Interval(0.125))}, 2);
   Box box{Interval(-1, 1), Interval(-1, 1)};
   REQUIRE(newton.contract(box) == prune::Outcome::unchanged);
   const double spent = operations_of(newton);
