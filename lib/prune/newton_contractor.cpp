@@ -98,15 +98,15 @@ bool IntervalNewton::substituted_jacobian(const Box& box) {
   z_ = box;
   for (int i = 0; i < unknowns(); ++i) z_[substitution_.col(i)] = Interval(y_[i]);
   substitution_.substitute(z_);
-  Box widened = box;
+  widened_ = box;
   bool wider = false;
   for (size_t k = 0; k < box.size(); ++k) {
     if (!is_finite(box[k]) || !is_finite(z_[k])) return false;
-    widened[k] = hull(box[k], z_[k]);
-    wider = wider || widened[k].lower() != box[k].lower() || widened[k].upper() != box[k].upper();
+    widened_[k] = hull(box[k], z_[k]);
+    wider = wider || widened_[k].lower() != box[k].lower() || widened_[k].upper() != box[k].upper();
   }
   if (wider) {
-    system_.jacobian(widened, j_.data());
+    system_.jacobian(widened_, j_.data());
     operations_ += system_.jacobian_operations();
   }
   g_.resize(substitution_.nonzeros());

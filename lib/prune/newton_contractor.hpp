@@ -65,7 +65,8 @@ class IntervalNewton final : public Contractor {
   double operations_ = 0;
   // Scratch.
   std::vector<FastInterval> f_, j_, g_, a_, b_, d_;
-  Box z_;  // the expansion point, its substituted coordinates at L(y)
+  Box z_;        // the expansion point, its substituted coordinates at L(y)
+  Box widened_;  // the box, each substituted coordinate widened to hold L(y)
   Eigen::MatrixXd jm_, c_;
   std::vector<double> y_;
 };

@@ -28,13 +28,13 @@ Bisect parse_bisect(const std::string& name) {
 
 namespace {
 
-// Whether each block's own rows have a regular Jacobian at two points of the domain, chosen
-// away from the symmetries a case's domains often have. A block
-// square only in its pattern (a circle written twice) has a curve of roots, and splitting it
-// first would trace that curve to sigma.
+// Whether each block of `b` (square: every column matched) has a regular Jacobian of its own
+// rows at two points of the domain, chosen away from the symmetries a case's domains often
+// have. A block square only in its pattern (a circle written twice) has a curve of roots, and
+// splitting it first would trace that curve to sigma.
 bool regular_blocks(const model::CompiledSystem& c, const model::BlockTriangular& b, const Box& domain) {
   const int n = c.cols();
-  std::vector<int> size(n + 1, 0), place(n), row_column(c.rows(), -1);
+  std::vector<int> size(n, 0), place(n), row_column(c.rows(), -1);
   for (int k = 0; k < n; ++k) {
     place[k] = size[b.block[k]]++;
     if (b.row[k] >= 0) row_column[b.row[k]] = k;
@@ -48,7 +48,7 @@ bool regular_blocks(const model::CompiledSystem& c, const model::BlockTriangular
     }
     c.jacobian_float(y.data(), j.data());
     std::vector<Eigen::MatrixXd> blocks(n);
-    for (int k = 0; k < n; ++k) blocks[b.block[k] < n ? b.block[k] : 0].setZero(size[b.block[k]], size[b.block[k]]);
+    for (int k = 0; k < n; ++k) blocks[b.block[k]].setZero(size[b.block[k]], size[b.block[k]]);
     for (int e = 0; e < c.nonzeros(); ++e) {
       const int r = c.entry_row(e), k = c.entry_col(e), own = row_column[r];
       if (own >= 0 && b.block[own] == b.block[k]) blocks[b.block[k]](place[own], place[k]) = j[e];
