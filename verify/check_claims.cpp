@@ -104,6 +104,7 @@ const std::vector<TrustedField>& trusted_fields() {
   static const std::vector<TrustedField> fields = {
       {"complete", "that the search was complete needs a log of the search (only its consistency is checked)"},
       {"stop_reason", "the search's own account"},
+      {"refinement_stopped", "the search's own account"},
       {"pending_boxes", "the search's own account"},
       {"volume_left", "the search's own account"},
       {"parameters", "the settings the search ran with (arith included: a float search proves no exclusion)"},
@@ -138,6 +139,10 @@ void check_claims(const json& j, const formulate::Formulation& f, std::vector<Cl
   solve::CaseResult search;
   search.complete = j.at("complete").get<bool>();
   search.stop_reason = j.value("stop_reason", "");
+  if (j.contains("refinement_stopped")) {
+    search.refine_stop = j.at("refinement_stopped").at("reason").get<std::string>();
+    search.unrefined = j.at("refinement_stopped").at("boxes").get<long>();
+  }
   search.rigorous = j.at("parameters").at("arith") == "verified";
   summarise(r, overlaps_unresolved(f, r), search);
   check_counts(j, r, failures);

@@ -99,6 +99,9 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
   report.headline += excluded;
   if (overlaps_unresolved) report.headline += ", " + std::to_string(overlaps_unresolved) + " overlapping roots unresolved";
   if (!result.complete) report.headline += "; search incomplete (" + result.stop_reason + ")";
+  if (result.complete && result.unrefined)
+    report.headline += "; refinement stopped (" + result.refine_stop + "): " + count(static_cast<int>(result.unrefined),
+                       "solution box", "solution boxes") + " left as the search found them";
   if (!result.rigorous)
     report.headline = "UNVERIFIED search (--arith float: boxes were discarded on float evidence, roots may be missing): " +
                       report.headline;

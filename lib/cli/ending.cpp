@@ -76,6 +76,9 @@ int end_of_run(const SolveCommand& cmd, const formulate::LoadedCase& c, const so
   } else if (!r.complete) {
     code = exit_incomplete;
     next = go_on(cmd, c, r);
+  } else if (r.unrefined && !(v && v->exact)) {
+    code = exit_incomplete;
+    next = "a limit stopped the refinement of the solution boxes; " + go_on(cmd, c, r);
   } else if (v && v->timed_out) {
     code = exit_incomplete;
     next = "verification reached its time limit (as long as the search's) with clusters left: " + longer(cmd, c);

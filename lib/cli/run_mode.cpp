@@ -64,8 +64,10 @@ int RunMode::report(const SolveCommand& cmd, const formulate::LoadedCase& c, con
   nlohmann::json j = report::result_json(c.name, c.file, *c.formulation, o, r);
   j.update(extra());
   const std::string& checkpoint = cmd.checkpoint.empty() ? cmd.kept_checkpoint : cmd.checkpoint;
-  if (r.complete && !cmd.kept_checkpoint.empty()) std::filesystem::remove(cmd.kept_checkpoint, ignored);
-  if (!r.complete && !checkpoint.empty()) j["checkpoint"] = checkpoint;  // what `linkbox resume OUT` reads
+  // A refinement a limit stopped is done again on resuming (solve/subproblem.cpp).
+  const bool final = r.complete && r.unrefined == 0;
+  if (final && !cmd.kept_checkpoint.empty()) std::filesystem::remove(cmd.kept_checkpoint, ignored);
+  if (!final && !checkpoint.empty()) j["checkpoint"] = checkpoint;  // what `linkbox resume OUT` reads
   // mpirun answers an interrupt with SIGTERM to every rank and SIGKILL a second later: the
   // search's result is on disk before verification starts, and replaced once it is verified.
   if (distributed() && interrupts().load() && !cmd.json_out.empty() && cmd.json_out != "-")

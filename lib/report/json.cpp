@@ -147,6 +147,8 @@ json result_json(const std::string& case_name, const std::string& case_file,
     j["race_choices"] = result.subproblems[0].race_choices;
   j["complete"] = result.complete;
   if (!result.complete) j["stop_reason"] = result.stop_reason;
+  // A complete search whose solution boxes a limit left unrefined: why its count may not be exact.
+  if (result.unrefined) j["refinement_stopped"] = {{"reason", result.refine_stop}, {"boxes", result.unrefined}};
   j["pending_boxes"] = result.pending_boxes;
   j["volume_left"] = result.volume_left;  // unexplored share of the domain, averaged over sub-problems
   j["stats"] = case_stats_json(result);

@@ -71,6 +71,9 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
                              std::to_string(r.pending_boxes) + " boxes pending, " + volume_text(r.volume_left) +
                              " of the domain's volume left")
                                 .c_str());
+  if (r.unrefined)
+    std::fprintf(out, "refinement stopped (%s): %ld solution boxes left as the search found them\n",
+                 r.refine_stop.c_str(), r.unrefined);
   const auto names = f.output_names();
   size_t total = 0;
   for (auto& s : r.subproblems) total += s.solutions.size();

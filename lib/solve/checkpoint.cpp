@@ -158,6 +158,7 @@ json result_out(const SubResult& r) {
           {"complete", r.complete},
           {"pending", boxes_out(r.pending)},
           {"volume_left", num(r.volume_left)},
+          {"unrefined", r.unrefined},
           {"counters", counters_out(r.counters)},
           {"narrow_counters", counters_out(r.narrow_counters)},
           {"strategy", strategy_out(r.strategy)},
@@ -178,6 +179,7 @@ SubResult result_in(const json& j) {
   r.complete = j.at("complete");
   r.pending = boxes_in(j.at("pending"));
   r.volume_left = num(j.at("volume_left"));
+  r.unrefined = j.value("unrefined", 0L);
   r.counters = counters_in(j.at("counters"));
   if (j.contains("narrow_counters")) r.narrow_counters = counters_in(j.at("narrow_counters"));
   r.strategy = strategy_in(j.at("strategy"));

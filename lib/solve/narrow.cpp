@@ -20,15 +20,18 @@ double split_width(const Box& b, const std::vector<int>& split_dims) {
 
 }  // namespace
 
-void narrow(Result& r, const formulate::SubProblem& sub, const Params& params, Budget& budget,
+long narrow(Result& r, const formulate::SubProblem& sub, const Params& params, Budget& budget,
             prune::Sequence& contractor, const Bisector& bisector) {
-  if (!(params.narrow > 0) || !(params.narrow < params.sigma)) return;
+  if (!(params.narrow > 0) || !(params.narrow < params.sigma)) return 0;
   Params fine = params;
   fine.sigma = params.narrow;
   fine.rho = std::min(params.rho, kNarrowRho);
   Result out;
+  long unnarrowed = 0;
   for (size_t k = 0; k < r.solutions.size(); ++k) {
-    if (r.certified[k] || budget.exhausted() || split_width(r.solutions[k], sub.split_dims) <= fine.sigma) {
+    const bool due = !r.certified[k] && split_width(r.solutions[k], sub.split_dims) > fine.sigma;
+    if (!due || budget.exhausted()) {
+      unnarrowed += due;
       out.solutions.push_back(std::move(r.solutions[k]));
       out.certified.push_back(r.certified[k]);
       continue;
@@ -37,6 +40,7 @@ void narrow(Result& r, const formulate::SubProblem& sub, const Params& params, B
     const bool finished = search.run(1);
     Result part = search.result();
     if (!finished || !part.complete) {  // stopped by a limit: keep the box as it was
+      ++unnarrowed;
       out.solutions.push_back(std::move(r.solutions[k]));
       out.certified.push_back(0);
       continue;
@@ -52,6 +56,7 @@ void narrow(Result& r, const formulate::SubProblem& sub, const Params& params, B
   r.solutions = std::move(out.solutions);
   r.certified = std::move(out.certified);
   r.stats.solution = static_cast<long>(r.solutions.size());
+  return unnarrowed;
 }
 
 }  // namespace linkbox::solve

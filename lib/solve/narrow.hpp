@@ -14,7 +14,8 @@ namespace linkbox::solve {
 
 // `r` is a complete search's result; its uncertified solutions wider than params.narrow are
 // replaced by their narrowed pieces (a box whose search a limit cut short is kept as it was).
-void narrow(Result& r, const formulate::SubProblem& sub, const Params& params, Budget& budget,
+// Returns how many boxes due for narrowing a limit left as they were.
+long narrow(Result& r, const formulate::SubProblem& sub, const Params& params, Budget& budget,
             prune::Sequence& contractor, const Bisector& bisector);
 
 }  // namespace linkbox::solve

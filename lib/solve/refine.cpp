@@ -69,12 +69,14 @@ struct Round {
 
 }  // namespace
 
-void refine(Result& r, double search_work, const formulate::SubProblem& sub, const Params& params, Budget& budget,
+long refine(Result& r, double search_work, const formulate::SubProblem& sub, const Params& params, Budget& budget,
             prune::Sequence& contractor, Certifier& certifier, const Bisector& bisector) {
   Params fine = params;
   double allowance = 2 * search_work + 20 * kRefineWork;
   std::vector<char> stuck(r.solutions.size(), 0);
+  long unrefined = 0;  // in the last round: boxes due for a refinement that a limit stopped
   for (int round = 0; round < kRefineRounds; ++round) {
+    unrefined = 0;
     fine.sigma = std::max(fine.sigma * kRefineFactor, kSigmaFloor);
     Round next;
     bool changed = false;
@@ -83,8 +85,10 @@ void refine(Result& r, double search_work, const formulate::SubProblem& sub, con
     for (size_t k = 0; k < r.solutions.size(); ++k) {
       auto& [cut_short, certified] = tried[group[k]];
       const bool curve = cut_short >= kRefineProbe && certified == 0;  // a curve's group, by its probes
-      if (r.certified[k] || group[k] < 0 || stuck[k] || curve || budget.exhausted() || fine.sigma >= params.sigma ||
-          allowance <= 0) {
+      const bool due =
+          !r.certified[k] && group[k] >= 0 && !stuck[k] && !curve && fine.sigma < params.sigma && allowance > 0;
+      if (!due || budget.exhausted()) {
+        unrefined += due;
         next.keep(std::move(r.solutions[k]), r.certified[k], stuck[k] || curve);
         continue;
       }
@@ -94,8 +98,11 @@ void refine(Result& r, double search_work, const formulate::SubProblem& sub, con
       Result part = search.result();
       cut_short += !finished;
       certified += static_cast<int>(std::count(part.certified.begin(), part.certified.end(), 1));
-      if (!finished || !part.complete) {  // stopped by a limit: keep the box as it was
-        next.keep(std::move(r.solutions[k]), false, true);
+      if (!finished || !part.complete) {  // stopped by its work or a limit: keep the box as it was
+        // Cut by the run's limit, not by its own work, it is not stuck: a resumed run tries it again.
+        const bool by_limit = budget.exhausted();
+        unrefined += by_limit;
+        next.keep(std::move(r.solutions[k]), false, !by_limit);
         continue;
       }
       changed = true;
@@ -111,6 +118,7 @@ void refine(Result& r, double search_work, const formulate::SubProblem& sub, con
   }
   r.stats.solution = static_cast<long>(r.solutions.size());
   r.stats.certified = std::count(r.certified.begin(), r.certified.end(), 1);
+  return unrefined;
 }
 
 }  // namespace linkbox::solve

@@ -12,8 +12,9 @@
 namespace linkbox::solve {
 
 // `r` is a complete search's result, which took `search_work`; its solutions, certificates and
-// counts are updated in place.
-void refine(Result& r, double search_work, const formulate::SubProblem& sub, const Params& params, Budget& budget,
+// counts are updated in place. Returns how many boxes due for a refinement a limit of `budget`
+// left as they were.
+long refine(Result& r, double search_work, const formulate::SubProblem& sub, const Params& params, Budget& budget,
             prune::Sequence& contractor, Certifier& certifier, const Bisector& bisector);
 
 }  // namespace linkbox::solve

@@ -40,6 +40,9 @@ struct SubResult {
   // domain's volume (split dimensions) they hold.
   std::vector<Box> pending;
   double volume_left = 0;
+  // Solution boxes due for a refinement or a narrowing (refine.hpp, narrow.hpp) that a limit
+  // left as the complete search found them.
+  long unrefined = 0;
   std::vector<prune::Counters> counters;  // per contractor of the strategy
   // Per contractor of narrowing_strategy() when the boxes were narrowed (narrow.hpp), else empty.
   std::vector<prune::Counters> narrow_counters;
@@ -63,6 +66,8 @@ struct CaseResult {
   bool complete = true;
   std::string stop_reason;  // why incomplete: "time limit reached", "CPU time limit reached", "box limit reached", "interrupted"
   long pending_boxes = 0;   // unexplored boxes over all sub-problems
+  long unrefined = 0;       // over all sub-problems (SubResult::unrefined)
+  std::string refine_stop;  // when unrefined > 0: the limit that stopped the refinement
   long boxes_taken = 0;     // boxes processed, raced candidates' included: the progress lines' count
   double volume_left = 0;   // unexplored share of the domain, averaged over sub-problems
   bool rigorous = true;     // false: float pruning (--arith float), exclusion not proved

@@ -40,6 +40,7 @@ void summarise(CaseResult& result, const RunOptions& options, const Budget& budg
     result.total += s.stats;
     result.complete = result.complete && s.complete;
     result.pending_boxes += static_cast<long>(s.pending.size());
+    result.unrefined += s.unrefined;
     result.volume_left += s.volume_left / static_cast<double>(n);
     add_counters(result, s.strategy, s.counters);
     if (!s.narrow_counters.empty()) add_counters(result, narrowing_strategy(), s.narrow_counters);
@@ -54,6 +55,7 @@ void summarise(CaseResult& result, const RunOptions& options, const Budget& budg
     }
   result.rigorous = options.strategy.arith == Arith::verified;
   if (!result.complete) result.stop_reason = budget.reason();
+  if (result.unrefined) result.refine_stop = budget.reason().empty() ? "a limit reached" : budget.reason();
   result.seconds = budget.elapsed();
   result.boxes_taken = budget.boxes_taken();
 }

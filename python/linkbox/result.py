@@ -63,6 +63,11 @@ class Result:
         return self.data.get("stop_reason", "")
 
     @property
+    def unrefined(self) -> int:
+        """Solution boxes of a complete search that a limit left unrefined (0: none)."""
+        return int(self.data.get("refinement_stopped", {}).get("boxes", 0))
+
+    @property
     def variables(self) -> list[str]:
         """The output variables: the columns of :attr:`roots`."""
         return list(self.data["variables"])

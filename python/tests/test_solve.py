@@ -83,6 +83,10 @@ def test_case_settings_and_limits():
     assert not result.complete and result.stop_reason == "box limit reached"
     sigma = linkbox.load(ROOT / "cases/linkages/cyclohexane.toml").solve(max_boxes=1, verify=False)
     assert sigma.data["parameters"]["sigma"] == 0.1 and "headline" not in sigma.data
+    close = linkbox.load(ROOT / "cases/hard/close-roots.toml")
+    cut = close.solve(max_boxes=40)  # the search finishes, the refinement of its boxes does not
+    assert cut.complete and cut.unrefined > 0 and not cut.exact
+    assert close.solve().unrefined == 0
 
 
 def test_compare_gives_a_dataframe():

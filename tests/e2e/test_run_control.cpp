@@ -456,3 +456,36 @@ TEST_CASE("the share of the search tree resolved counts leaves by depth, whateve
   CHECK(search.tree_done() == 1);
   CHECK(search.result().solutions.size() == 16);
 }
+
+TEST_CASE("a limit that stops the refinement after a complete search is said, and resume finishes it",
+          "[run_control][cli]") {
+  // close-roots' search ends with one box around both roots, 5e-9 apart; the refinement
+  // separates them. 40 boxes let the search finish and stop the refinement.
+  const std::string out = tmp("refine-limit.json");
+  const auto r = run("solve " + src("cases/hard/close-roots.toml") + " --quiet --max-boxes 40 --json " + out);
+  REQUIRE(r.code == 5);
+  auto j = read(out);
+  CHECK(j["complete"] == true);
+  CHECK_FALSE(j.contains("stop_reason"));
+  REQUIRE(j.contains("refinement_stopped"));
+  CHECK(j["refinement_stopped"]["reason"] == "box limit reached");
+  CHECK(j["refinement_stopped"]["boxes"].get<long>() >= 1);
+  CHECK(j["verification"]["exact"] == false);
+  CHECK(j["headline"].get<std::string>().find("refinement stopped (box limit reached)") != std::string::npos);
+  CHECK(r.out.find("refinement stopped (box limit reached)") != std::string::npos);
+  CHECK(r.out.find("linkbox resume " + out) != std::string::npos);
+  CHECK(run("check " + out + " --case " + src("cases/hard/close-roots.toml")).code == 0);
+
+  REQUIRE(run("resume " + out + " --quiet --json " + out).code == 0);
+  j = read(out);
+  CHECK_FALSE(j.contains("refinement_stopped"));
+  CHECK(j["headline"] == "exactly 2 roots in the domain, each in its certified box");
+}
+
+TEST_CASE("a complete refinement states no stop", "[run_control][cli]") {
+  const std::string out = tmp("refine-whole.json");
+  REQUIRE(run("solve " + src("cases/hard/close-roots.toml") + " --quiet --json " + out).code == 0);
+  const auto j = read(out);
+  CHECK_FALSE(j.contains("refinement_stopped"));
+  CHECK(j["headline"] == "exactly 2 roots in the domain, each in its certified box");
+}
