@@ -20,4 +20,12 @@ struct BlockTriangular {
 // `entries`: the (row, column) pairs of the nonzero pattern.
 BlockTriangular block_triangular(int rows, int cols, const std::vector<std::pair<int, int>>& entries);
 
+// Those pairs of a sparse Jacobian with nonzeros(), entry_row(e) and entry_col(e).
+template <class Sparse>
+std::vector<std::pair<int, int>> pattern_of(const Sparse& s) {
+  std::vector<std::pair<int, int>> entries;
+  for (int e = 0; e < s.nonzeros(); ++e) entries.emplace_back(s.entry_row(e), s.entry_col(e));
+  return entries;
+}
+
 }  // namespace linkbox::model

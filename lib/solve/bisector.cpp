@@ -69,10 +69,11 @@ Bisector::Bisector(Bisect rule, const formulate::SubProblem& sub, double sigma)
   if (rule_ == Bisect::automatic) rule_ = sub.clipping ? Bisect::widest : Bisect::smear;
   if (rule_ == Bisect::smear) {
     compiled_ = std::make_shared<const model::CompiledSystem>(system.equations, system.links, system.variables.size());
-    std::vector<std::pair<int, int>> pattern;
-    for (int e = 0; e < compiled_->nonzeros(); ++e) pattern.emplace_back(compiled_->entry_row(e), compiled_->entry_col(e));
-    const model::BlockTriangular blocks = model::block_triangular(compiled_->rows(), compiled_->cols(), pattern);
-    if (compiled_->rows() == compiled_->cols() && blocks.square && blocks.blocks > 1 && regular_blocks(*compiled_, blocks, system.domain())) block_ = blocks.block;
+    const model::BlockTriangular blocks =
+        model::block_triangular(compiled_->rows(), compiled_->cols(), model::pattern_of(*compiled_));
+    if (compiled_->rows() == compiled_->cols() && blocks.square && blocks.blocks > 1 &&
+        regular_blocks(*compiled_, blocks, system.domain()))
+      block_ = blocks.block;
   }
 }
 
