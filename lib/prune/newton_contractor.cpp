@@ -183,15 +183,26 @@ Outcome IntervalNewton::gauss_seidel(Box& box) {
   const auto row = [&](int i) { return substituted ? substitution_.row(i) : i; };
   const auto col = [&](int k) { return substituted ? substitution_.col(k) : k; };
 
-  // A = C F'(X) (n x n) from the sparse Jacobian; b = -C F(y).
+  // Only a row whose diagonal entry of C F'(X) excludes 0 can narrow anything (on a wide box,
+  // often none): the others' rows of A and b are not built. Each entry sums its terms in the
+  // order of the nonzeros, the same whichever rows are built.
+  diagonal_.assign(n, FastInterval(0.0));
+  for (int e = 0; e < nonzeros(); ++e)
+    if (const double c = c_(entry_col(e), entry_row(e)); c != 0) diagonal_[entry_col(e)] += c * j[e];
+  live_.clear();
+  for (int i = 0; i < n; ++i)
+    if (diagonal_[i].lower() > 0 || diagonal_[i].upper() < 0) live_.push_back(i);
+  if (live_.empty()) return Outcome::unchanged;
+
+  // A = C F'(X) (n x n) from the sparse Jacobian; b = -C F(y); live rows only.
   a_.assign(static_cast<size_t>(n) * n, FastInterval(0.0));
   for (int e = 0; e < nonzeros(); ++e) {
     const int r = entry_row(e), k = entry_col(e);
-    for (int i = 0; i < n; ++i)
+    for (int i : live_)
       if (const double c = c_(i, r); c != 0) a_[static_cast<size_t>(i) * n + k] += c * j[e];
   }
   b_.assign(n, FastInterval(0.0));
-  for (int i = 0; i < n; ++i)
+  for (int i : live_)
     for (int r = 0; r < m; ++r)
       if (const double c = c_(i, r); c != 0) b_[i] -= c * f_[row(r)];
 
@@ -199,12 +210,14 @@ Outcome IntervalNewton::gauss_seidel(Box& box) {
   d_.resize(n);
   for (int i = 0; i < n; ++i) d_[i] = FastInterval(box[col(i)].lower(), box[col(i)].upper()) - y_[i];
   bool interior = true;
+  size_t next_live = 0;
   for (int i = 0; i < n; ++i) {
-    const FastInterval& aii = a_[static_cast<size_t>(i) * n + i];
-    if (!(aii.lower() > 0 || aii.upper() < 0)) {  // contains 0 (or NaN): this row proves nothing
+    if (next_live == live_.size() || live_[next_live] != i) {  // its diagonal contains 0 (or NaN)
       interior = false;
       continue;
     }
+    ++next_live;
+    const FastInterval& aii = a_[static_cast<size_t>(i) * n + i];
     FastInterval s = b_[i];
     for (int k = 0; k < n; ++k)
       if (k != i) s -= a_[static_cast<size_t>(i) * n + k] * d_[k];

@@ -64,7 +64,8 @@ class IntervalNewton final : public Contractor {
   bool unique_ = false;
   double operations_ = 0;
   // Scratch.
-  std::vector<FastInterval> f_, j_, g_, a_, b_, d_;
+  std::vector<FastInterval> f_, j_, g_, a_, b_, d_, diagonal_;
+  std::vector<int> live_;  // the rows of C F'(X) whose diagonal entry excludes 0
   Box z_;        // the expansion point, its substituted coordinates at L(y)
   Box widened_;  // the box, each substituted coordinate widened to hold L(y)
   Eigen::MatrixXd jm_, c_;
