@@ -101,7 +101,7 @@ void summarise(VerifyReport& report, int overlaps_unresolved, const solve::CaseR
   if (!result.complete) report.headline += "; search incomplete (" + result.stop_reason + ")";
   if (result.complete && result.unrefined)
     report.headline += "; refinement stopped (" + result.refine_stop + "): " + count(static_cast<int>(result.unrefined),
-                       "solution box", "solution boxes") + " left as the search found them";
+                       "solution box", "solution boxes") + " left unrefined";
   if (!result.rigorous)
     report.headline = "UNVERIFIED search (--arith float: boxes were discarded on float evidence, roots may be missing): " +
                       report.headline;

@@ -72,8 +72,8 @@ void print_summary(std::FILE* out, const formulate::LoadedCase& c, const solve::
                              " of the domain's volume left")
                                 .c_str());
   if (r.unrefined)
-    std::fprintf(out, "refinement stopped (%s): %ld solution boxes left as the search found them\n",
-                 r.refine_stop.c_str(), r.unrefined);
+    std::fprintf(out, "refinement stopped (%s): %ld solution %s left unrefined\n", r.refine_stop.c_str(),
+                 r.unrefined, r.unrefined == 1 ? "box" : "boxes");
   const auto names = f.output_names();
   size_t total = 0;
   for (auto& s : r.subproblems) total += s.solutions.size();

@@ -40,8 +40,8 @@ struct SubResult {
   // domain's volume (split dimensions) they hold.
   std::vector<Box> pending;
   double volume_left = 0;
-  // Solution boxes due for a refinement or a narrowing (refine.hpp, narrow.hpp) that a limit
-  // left as the complete search found them.
+  // Solution boxes of a complete search due for another round of refinement or narrowing
+  // (refine.hpp, narrow.hpp) that a limit left as they were.
   long unrefined = 0;
   std::vector<prune::Counters> counters;  // per contractor of the strategy
   // Per contractor of narrowing_strategy() when the boxes were narrowed (narrow.hpp), else empty.
