@@ -29,10 +29,11 @@ void finish(const formulate::SubProblem& sub, const SubSettings& settings, Budge
   s.rho = params.rho;
   // Only Newton tells the certifier where to look; without it a refinement cannot certify.
   if (r.complete && ran.pruning.strategy.uses(ContractorKind::newton))
-    s.unrefined += refine(r, work, sub, params, budget, *ran.pruning.sequence, ran.certifier, bisector);
-  if (r.complete && params.narrow > 0) {
+    s.unrefined = refine(r, work, sub, params, budget, *ran.pruning.sequence, ran.certifier, bisector);
+  // A refinement that a limit stopped leaves nothing to the narrowing (counting its boxes twice).
+  if (r.complete && params.narrow > 0 && s.unrefined == 0) {
     const Pruning fine = make_pruning(narrowing_strategy(), settings.strategy, sub);
-    s.unrefined += narrow(r, sub, params, budget, *fine.sequence, bisector);
+    s.unrefined = narrow(r, sub, params, budget, *fine.sequence, bisector);
     auto counters = fine.sequence->counters();
     if (std::any_of(counters.begin(), counters.end(), [](const prune::Counters& c) { return c.calls > 0; }))
       s.narrow_counters = std::move(counters);
