@@ -5,11 +5,11 @@
 #include "solve/pruning.hpp"
 #include "solve/race.hpp"
 #include "solve/search.hpp"
+#include "tests/cli_run.hpp"
 #include "tests/same_search_state.hpp"
 
 #include <catch2/catch.hpp>
 
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -28,9 +28,10 @@ std::string discrete_boundary(int n) {
     m << (i > 1 ? "-x(" + std::to_string(i - 1) + ") + " : "") << "2*x(" << i << ") + (h^2*(1 + " << i
       << "*h + x(" << i << "))^3)/2" << (i < n ? " - x(" + std::to_string(i + 1) + ")" : "") << " = 0;\n";
   m << "end\n";
-  const auto path = std::filesystem::temp_directory_path() / ("linkbox-discrete-boundary-" + std::to_string(n) + ".bch");
+  // ctest runs this file's test cases in parallel processes: each writes its own copy.
+  const std::string path = test::scratch("discrete-boundary-" + std::to_string(n) + ".bch");
   std::ofstream(path) << m.str();
-  return path.string();
+  return path;
 }
 
 struct Ran {
