@@ -34,9 +34,10 @@ CompiledSystem::CompiledSystem(const std::vector<Polynomial>& equations, const s
 
 CompiledSystem::Compiled CompiledSystem::add(const Polynomial& p, Arith arith) {
   Compiled c{static_cast<int>(terms_.size()), 0};
+  const NearestScope nearest;  // every term's midpoint under one switch of the rounding mode
   for (auto& [powers, coef] : p.terms()) {
     const Interval k = coefficient_for(arith, coef);
-    Term t{as_fast(k), median(k), static_cast<int>(factors_.size()), 0};
+    Term t{as_fast(k), nearest.median(k), static_cast<int>(factors_.size()), 0};
     for (auto [v, e] : powers) factors_.emplace_back(v, e);
     t.end = static_cast<int>(factors_.size());
     terms_.push_back(t);
