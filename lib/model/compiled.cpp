@@ -1,5 +1,6 @@
 #include "model/compiled.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace linkbox::model {
@@ -119,6 +120,38 @@ double CompiledSystem::value_operations() const {
 
 double CompiledSystem::jacobian_operations() const {
   return power_count_ + sum_operations(partials_) + 2 * kLinkOperations * static_cast<double>(links_.size());
+}
+
+// A partial derivative has one term per term naming the variable, with one factor fewer where
+// its exponent is 1 (Polynomial::derivative merges none: distinct terms stay distinct).
+CompiledSystem::Shape CompiledSystem::shape_of(const std::vector<Polynomial>& equations, const std::vector<Link>& links,
+                                               size_t variables) {
+  std::vector<int> degree(variables, 1);
+  double values = 0, partials = 0;
+  int nonzeros = 0;
+  for (auto& p : equations) {
+    for (auto& [powers, coef] : p.terms()) {
+      const double factors = static_cast<double>(powers.size());
+      values += 1 + factors;
+      for (auto [v, e] : powers) {
+        if (v < 0 || v >= static_cast<int>(variables))
+          throw std::invalid_argument("CompiledSystem: an equation uses a variable beyond the box");
+        degree[v] = std::max(degree[v], e);
+        partials += 1 + factors - (e == 1);
+      }
+    }
+    nonzeros += static_cast<int>(p.variables().size());
+  }
+  double powers = 0;
+  for (int d : degree) powers += d;
+  const double link_count = static_cast<double>(links.size());
+  Shape s;
+  s.value_operations = powers + values + kLinkOperations * link_count;
+  s.jacobian_operations = powers + partials + 2 * kLinkOperations * link_count;
+  s.rows = static_cast<int>(equations.size() + links.size());
+  s.cols = static_cast<int>(variables);
+  s.nonzeros = nonzeros + 2 * static_cast<int>(links.size());
+  return s;
 }
 
 void CompiledSystem::values(const Box& x, FastInterval* f) const {

@@ -42,6 +42,13 @@ class CompiledSystem {
   // (prune::Counters::operations); evaluate() costs both, values_at() about the first.
   double value_operations() const;
   double jacobian_operations() const;
+  // What the system compiled from these would count, from the terms' shapes alone (no table
+  // built): pricing a box needs the counts of every sub-problem, not its tables.
+  struct Shape {
+    double value_operations = 0, jacobian_operations = 0;
+    int rows = 0, cols = 0, nonzeros = 0;
+  };
+  static Shape shape_of(const std::vector<Polynomial>& equations, const std::vector<Link>& links, size_t variables);
   // Values at the point y (each coordinate a double), as degenerate intervals.
   void values_at(const double* y, FastInterval* f) const;
   // In plain double with midpoint coefficients, in whatever rounding mode is set: for a

@@ -55,16 +55,25 @@ Hc4::Hc4(const std::vector<model::Polynomial>& equations, Arith arith, const std
     add(c.g);
     strict_.push_back(c.strict);
   }
-  // A term of p factors: p products and two sums forward, and per factor p products and a
-  // projection backward, each about two interval products; a power adds its pow() and its
-  // root (a square root; for a higher power, nth_root's libm guess and its checked steps).
-  for (auto& terms : equations_)
-    for (auto& t : terms) {
-      const double p = static_cast<double>(t.powers.size());
-      call_operations_ += 2 * (3 + p + p * (p + 1));
-      for (auto [v, e] : t.powers) call_operations_ += e == 2 ? 10 : e > 2 ? 230 : 0;
+  call_operations_ = call_operations_of(equations, inequalities, links_.size());
+}
+
+// A term of p factors: p products and two sums forward, and per factor p products and a
+// projection backward, each about two interval products; a power adds its pow() and its root
+// (a square root; for a higher power, nth_root's libm guess and its checked steps).
+double Hc4::call_operations_of(const std::vector<model::Polynomial>& equations,
+                               const std::vector<model::Inequality>& inequalities, size_t links) {
+  double n = 0;
+  auto add = [&](const model::Polynomial& e) {
+    for (auto& [powers, coef] : e.terms()) {
+      const double p = static_cast<double>(powers.size());
+      n += 2 * (3 + p + p * (p + 1));
+      for (auto [v, k] : powers) n += k == 2 ? 10 : k > 2 ? 230 : 0;
     }
-  call_operations_ += model::kLinkOperations * static_cast<double>(links_.size());
+  };
+  for (auto& e : equations) add(e);
+  for (auto& c : inequalities) add(c.g);
+  return n + model::kLinkOperations * static_cast<double>(links);
 }
 
 std::unique_ptr<Contractor> Hc4::clone() const {

@@ -19,6 +19,9 @@ class Hc4 final : public Contractor {
   std::unique_ptr<Contractor> clone() const override;
   void add_work(Counters& counters) const override;
   double call_operations() const { return call_operations_; }  // what one contract() costs
+  // call_operations() of the contractor built from these, without building it.
+  static double call_operations_of(const std::vector<model::Polynomial>& equations,
+                                   const std::vector<model::Inequality>& inequalities, size_t links);
 
  private:
   struct Term {

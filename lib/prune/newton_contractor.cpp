@@ -18,6 +18,17 @@ bool regular(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
   return pivots.minCoeff() > 1e-14 * pivots.maxCoeff();
 }
 
+// The float LU of the midpoint Jacobian: about n^3/50 operations on large systems, where
+// Eigen's blocked kernels run; below n = 20 its n^2 bookkeeping dominates (measured, see
+// papers/decisions/search.md). A step that finds the LU singular stops there.
+double factor_price(double n) { return n * n + std::floor(n * n * n / 50); }
+
+// Past the LU: the inverse in double (about n^3/5), then F(y), C F'(X), C F(y) and
+// Gauss-Seidel in intervals.
+double solve_price(double m, double n, double nonzeros, double value_operations) {
+  return std::floor(n * n * n / 5) + n * (nonzeros + m + n) + value_operations;
+}
+
 }  // namespace
 
 IntervalNewton::IntervalNewton(const std::vector<model::Polynomial>& equations, size_t variables, Arith arith,
@@ -41,24 +52,22 @@ void IntervalNewton::find_blocks() {
   }
 }
 
-// The float LU of the midpoint Jacobian: about n^3/50 operations on large systems, where
-// Eigen's blocked kernels run; below n = 20 its n^2 bookkeeping dominates (measured, see
-// papers/decisions/search.md). A step that finds the LU singular stops there.
-double IntervalNewton::factor_operations() const {
-  const double n = unknowns();
-  return n * n + std::floor(n * n * n / 50);
-}
+double IntervalNewton::factor_operations() const { return factor_price(unknowns()); }
 
-// Past the LU: the inverse in double (about n^3/5), then F(y), C F'(X), C F(y) and
-// Gauss-Seidel in intervals.
 double IntervalNewton::solve_operations() const {
-  const double m = equations(), n = unknowns();
-  return std::floor(n * n * n / 5) + n * (nonzeros() + m + n) + system_.value_operations();
+  return solve_price(equations(), unknowns(), nonzeros(), system_.value_operations());
 }
 
 double IntervalNewton::step_operations() const {
   return system_.value_operations() + system_.jacobian_operations() + substitution_.reduce_operations() +
          factor_operations() + solve_operations();
+}
+
+double IntervalNewton::step_operations_of(const std::vector<model::Polynomial>& equations, size_t variables,
+                                          const std::vector<model::Link>& links) {
+  const model::CompiledSystem::Shape s = model::CompiledSystem::shape_of(equations, links, variables);
+  return s.value_operations + s.jacobian_operations + factor_price(s.cols) +
+         solve_price(s.rows, s.cols, s.nonzeros, s.value_operations);
 }
 
 Outcome IntervalNewton::contract(Box& box) {

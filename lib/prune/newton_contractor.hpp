@@ -30,6 +30,10 @@ class IntervalNewton final : public Contractor {
   std::unique_ptr<Contractor> clone() const override { return std::make_unique<IntervalNewton>(*this); }
   void add_work(Counters& counters) const override { counters.operations += operations_; }
   double step_operations() const;  // what one contract() costs that reaches Gauss-Seidel
+  // step_operations() of the contractor built from these with nothing substituted, without
+  // building it (model::CompiledSystem::shape_of).
+  static double step_operations_of(const std::vector<model::Polynomial>& equations, size_t variables,
+                                   const std::vector<model::Link>& links = {});
   // The last step's image lay strictly inside the box in every coordinate: C F has exactly
   // one root there, so F has at most one. A hint for when to try a certificate; the
   // certificate itself is proved elsewhere.

@@ -1,6 +1,8 @@
 // The operations the race prices (prune::Counters::operations): propagation and Newton cost
 // what the system's structure says, the same on every box; an LP-based contractor adds each
 // LP's pivots, so a larger relaxation costs more per LP.
+#include "model/compiled.hpp"
+#include "model/link.hpp"
 #include "prune/hc4.hpp"
 #include "prune/lp/clp_core.hpp"
 #include "prune/newton_contractor.hpp"
@@ -155,4 +157,51 @@ TEST_CASE("a sequence's live count advances within a call, so a cap can stop it 
   CHECK_THROWS_AS(thrown.contract(c), std::runtime_error);
   thrown.stop_when(nullptr);
   CHECK(thrown.live_operations() == thrown.operations());
+}
+
+namespace {
+
+// Random sparse terms of degree up to 4 in n of `variables` unknowns (some left unused), some
+// cancelling to nothing.
+Polynomial random_polynomial(int variables, std::mt19937& rng) {
+  std::uniform_int_distribution<int> terms(0, 6), var(0, variables - 1), exponent(1, 4), coef(-3, 3);
+  Polynomial p;
+  const int count = terms(rng);
+  for (int t = 0; t < count; ++t) {
+    Polynomial m = Polynomial::constant(Interval(coef(rng) / 2.0));
+    for (int k = var(rng) % 3; k > 0; --k) {
+      const int v = var(rng) % std::max(1, variables - 2);
+      for (int e = exponent(rng); e > 0; --e) m = m * Polynomial::variable(v);
+    }
+    p += m;
+  }
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("the counts read from a system's shape are those of the contractors built from it", "[operations]") {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 1 + trial % 9;
+    std::vector<Polynomial> f;
+    for (int i = 0; i < 1 + (trial * 7) % 11; ++i) f.push_back(random_polynomial(n, rng));
+    std::vector<model::Inequality> g;
+    if (trial % 3 == 0) g.push_back({random_polynomial(n, rng), false, "g", {}});
+    std::vector<model::Link> links;
+    if (n >= 2 && trial % 4 == 0) links.push_back({model::Elementary::exp, n - 1, 0, "exp"});
+    INFO("trial " << trial);
+    const prune::Hc4 hc4(f, Arith::verified, g, links);
+    CHECK(prune::Hc4::call_operations_of(f, g, links.size()) == hc4.call_operations());
+    const model::CompiledSystem system(f, links, n);
+    const auto shape = model::CompiledSystem::shape_of(f, links, n);
+    CHECK(shape.value_operations == system.value_operations());
+    CHECK(shape.jacobian_operations == system.jacobian_operations());
+    CHECK(shape.rows == system.rows());
+    CHECK(shape.cols == system.cols());
+    CHECK(shape.nonzeros == system.nonzeros());
+    const prune::IntervalNewton newton(f, n, Arith::verified, links);
+    CHECK(prune::IntervalNewton::step_operations_of(f, n, links) == newton.step_operations());
+  }
+  CHECK_THROWS_AS(model::CompiledSystem::shape_of({Polynomial::variable(3)}, {}, 2), std::invalid_argument);
 }
