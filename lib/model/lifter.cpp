@@ -28,6 +28,12 @@ Interval padded(const Interval& d) {
   return Interval((Interval(d.lower()) - slack).lower(), (Interval(d.upper()) + slack).upper());
 }
 
+// The link of a sin, cos or tan whose argument is not an angle's (find_linked).
+Elementary linked_trig(Application::Function f) {
+  using F = Application::Function;
+  return f == F::sin ? Elementary::sin : f == F::cos ? Elementary::cos : Elementary::tan;
+}
+
 }  // namespace
 
 Polynomial one() { return Polynomial::constant(Interval(1.0)); }
@@ -43,16 +49,6 @@ bool within_one(const Interval& x, const Interval& shift, const Interval& period
   if (!is_finite(q)) return false;
   const double lo = std::floor(q.lower());
   if (std::fabs(lo) > 1e15 || q.upper() > lo + 1) return false;
-  k = static_cast<long>(lo);
-  return true;
-}
-
-bool within_tan_branch(const Interval& x, long& k) {
-  const Interval pi = rigorous::pi();
-  const Interval q = (x + pi / Interval(2.0)) / pi;
-  if (!is_finite(q)) return false;
-  const double lo = std::floor(q.lower());
-  if (std::fabs(lo) > 1e15 || !(q.lower() > lo) || !(q.upper() < lo + 1)) return false;
   k = static_cast<long>(lo);
   return true;
 }
@@ -171,13 +167,13 @@ void Lifter::add_application_unknowns() {
     const Polynomial x = Polynomial::variable(index);
     image_[n_ + k] = x;
     Elementary f;
-    if (a.function == Function::tan) add_tan_unknown(k, x);
+    if (a.function == Function::tan && !linked_[k]) add_tan_unknown(k, x);
     else if (a.function == Function::sqrt) add_sqrt_unknown(k, x);
     else if (a.function == Function::reciprocal) add_reciprocal_unknown(k, x);
     else if (a.function == Function::base) add_base_unknown(k, x);
     else if (a.function == Function::atan2) add_atan2_unknown(k, index);
     else if (link_function(a.function, f)) add_link_unknown(k, f, index);
-    else add_link_unknown(k, a.function == Function::sin ? Elementary::sin : Elementary::cos, index);  // linked_
+    else add_link_unknown(k, linked_trig(a.function), index);
   }
 }
 
@@ -309,6 +305,8 @@ void Lifter::add_link_unknown(int k, Elementary f, int y) {
   Interval range, value;
   try {
     range = argument_range(k);
+    long branch;
+    if (f == Elementary::tan && !within_tan_branch(range, branch)) fail_application(k, pole_message(k, range));
     value = image(f, range);
   } catch (const std::domain_error&) {
     fail_application(k, app.text + ": its argument is outside the domain of " + to_string(f) +
@@ -338,9 +336,12 @@ int Lifter::argument_unknown(int k, Elementary f, const Interval& range) {
   if (f == Elementary::asin || f == Elementary::acos || f == Elementary::atanh)
     intersect(range, Interval(-1.0, 1.0), domain);
   if (f == Elementary::acosh) intersect(range, Interval(1.0, kInf), domain);
+  Interval box = padded(domain);
+  long branch;
+  if (f == Elementary::tan && !within_tan_branch(box, branch)) box = domain;  // the padding must not reach a pole
   const int a = static_cast<int>(out_.variables.size());
   const std::string& text = raw_.applications[k].text;
-  add_variable("argument of " + text, padded(domain), {Lifting::Source::Kind::argument, k});
+  add_variable("argument of " + text, box, {Lifting::Source::Kind::argument, k});
   definitions_.emplace_back(Polynomial::variable(a) - arg, "argument of " + text);
   return a;
 }

@@ -16,8 +16,6 @@ std::string format(double x);  // "%.6g"
 Polynomial one();
 // The k with x in [k*period + shift, (k+1)*period + shift] (closed), if one exists.
 bool within_one(const Interval& x, const Interval& shift, const Interval& period, long& k);
-// The k with x strictly inside (k pi - pi/2, k pi + pi/2): a branch of tan without a pole.
-bool within_tan_branch(const Interval& x, long& k);
 
 // cos and sin of an angle as one complex value: products are angle sums.
 struct Complex {

@@ -47,9 +47,9 @@ bool occurs(const Polynomial& p, int v) {
 
 bool Lifter::is_angle_use(int k) const { return is_trig(raw_.applications[k].function) && !linked_[k]; }
 
-// The sin and cos that are links (lifting.hpp): those whose argument is not affine in the
+// The sin, cos and tan that are links (lifting.hpp): those whose argument is not affine in the
 // declared variables or has a variable that also occurs outside sin, cos and tan (in an
-// equation, an inequality, another function's argument or a linked sin's), to a fixpoint.
+// equation, an inequality, another function's argument or a linked one's), to a fixpoint.
 // A case whose trigonometric functions all take angles has none.
 void Lifter::find_linked() {
   const int count = static_cast<int>(raw_.applications.size());
@@ -71,7 +71,6 @@ void Lifter::find_linked() {
         mark(a.second);
         continue;
       }
-      if (a.function == Function::tan) continue;  // tan of a non-angle is refused (find_angles)
       bool link = a.argument.total_degree() > 1;
       for (int v : a.argument.variables()) link = link || v >= n_ || outside[v];
       if (link) linked_[k] = changed = true;
@@ -106,9 +105,7 @@ void Lifter::find_angles() {
     for (int v : p.variables())
       if (v < n_ && angle_of_[v] >= 0)
         fail_variable(v, "variable '" + name(v) + "' is used inside " + text(angles_[angle_of_[v]].applications[0]) +
-                             " and outside sin, cos and tan (in " + where +
-                             "): tan takes angles only, variables that occur nowhere else (sin and cos take any "
-                             "argument: write tan(t) as sin(t)/cos(t))");
+                             " and outside sin, cos and tan (in " + where + ")");
   };
   for (size_t i = 0; i < raw_.equations.size(); ++i) only_inside(raw_.equations[i], "equation " + std::to_string(i + 1));
   for (auto& c : raw_.inequalities) only_inside(c.g, "\"" + c.name + "\"");

@@ -26,9 +26,10 @@
 //    equation y - (its expansion) = 0: expanded, C cos(3t) is C (4 c^3 - 3 c), whose C
 //    occurs twice, so interval evaluation overestimates it; C y keeps it exact. Its domain
 //    is sin or cos of the argument's range.
-//    sin and cos of anything else (an argument that is not affine, or has a variable that
-//    also occurs outside sin, cos and tan) are links, below: t and cos(t) are not related by
-//    any polynomial equation. tan of such an argument is rejected.
+//    sin, cos and tan of anything else (an argument that is not affine, or has a variable
+//    that also occurs outside sin, cos and tan) are links, below: t and cos(t) are not related
+//    by any polynomial equation. tan's argument must stay within one branch (pi/2 + k pi
+//    excluded) over the domain.
 //  - tan(A) of an angle expression that is not "tan only": an unknown tau with tau cos(A) =
 //    sin(A); A's range over the domain must avoid the poles (tau's domain is tan of it).
 //  - base: a sum A over two or more variables raised to a power, where the reader keeps it as
@@ -63,7 +64,7 @@
 //    the cut, the negative X axis) -pi < t <= pi is added, which keeps one t per point. A
 //    point with X = Y = 0 fails the strict inequality; a root on the cut itself (Y = 0,
 //    X < 0) is on the boundary of t <= pi, so it is at best unresolved, never counted twice.
-//  - exp, log, sinh, cosh, tanh, asinh, acosh, atanh, asin, acos, atan (and sin, cos as above) of
+//  - exp, log, sinh, cosh, tanh, asinh, acosh, atanh, asin, acos, atan (and sin, cos, tan as above) of
 //    any expression
 //    A, which no polynomial relates to its argument: an unknown y and a link y = f(a)
 //    (model/link.hpp), used only where no polynomial lifting applies, where a is A

@@ -65,6 +65,14 @@ const Interval& half_pi() {
   return h;
 }
 
+// tan on a box within one branch; the whole line where the box may meet a pole.
+Interval tan_on_branch(const Interval& x) {
+  long k;
+  if (!within_tan_branch(x, k)) return kWhole;
+  Nearest nearest;
+  return rigorous::tan(x);
+}
+
 // {v : f(v) in y} enclosed, for f monotone (cosh: |v|); false when empty. Inside Nearest.
 bool preimage(Elementary f, Interval y, Interval& out) {
   const Interval& half_pi = model::half_pi();
@@ -104,13 +112,23 @@ bool preimage(Elementary f, Interval y, Interval& out) {
       out = cos(y);
       return true;
     case Elementary::sin:
-    case Elementary::cos: out = kWhole; return true;  // not monotone: nothing learnt
+    case Elementary::cos:
+    case Elementary::tan: out = kWhole; return true;  // not monotone (tan: narrow_argument)
   }
   return false;
 }
 
+// a's points on its branch of tan whose tangent can be in y: atan(y) + k pi.
+bool narrow_tan_argument(const Interval& y, Interval& a) {
+  long k;
+  if (!within_tan_branch(a, k)) return true;  // may meet a pole: nothing learnt
+  Nearest nearest;
+  return intersect(a, rigorous::atan(y) + Interval(static_cast<double>(k)) * rigorous::pi(), a);
+}
+
 // Narrows a to the points whose image can be in y.
 bool narrow_argument(Elementary f, const Interval& y, Interval& a) {
+  if (f == Elementary::tan) return narrow_tan_argument(y, a);
   Interval r;
   if (!preimage(f, y, r)) return false;
   if (f != Elementary::cosh) return intersect(a, r, a);
@@ -151,8 +169,19 @@ const char* to_string(Elementary f) {
     case Elementary::atan: return "atan";
     case Elementary::sin: return "sin";
     case Elementary::cos: return "cos";
+    case Elementary::tan: return "tan";
   }
   return "?";
+}
+
+bool within_tan_branch(const Interval& x, long& k) {
+  const Interval pi = rigorous::pi();
+  const Interval q = (x + pi / Interval(2.0)) / pi;
+  if (!is_finite(q)) return false;
+  const double lo = std::floor(q.lower());
+  if (std::fabs(lo) > 1e15 || !(q.lower() > lo) || !(q.upper() < lo + 1)) return false;
+  k = static_cast<long>(lo);
+  return true;
 }
 
 bool within_domain(Elementary f, const Interval& x) {
@@ -162,6 +191,10 @@ bool within_domain(Elementary f, const Interval& x) {
     case Elementary::atanh: return x.lower() > -1 && x.upper() < 1;
     case Elementary::asin:
     case Elementary::acos: return x.lower() >= -1 && x.upper() <= 1;
+    case Elementary::tan: {
+      long k;
+      return within_tan_branch(x, k);
+    }
     default: return true;
   }
 }
@@ -174,6 +207,7 @@ Interval image(Elementary f, const Interval& x) {
     case Elementary::log: return a.lower() > 0 ? log(a) : Interval(-kInf, log(point(a.upper())).upper());
     case Elementary::sin: return sin(a);
     case Elementary::cos: return cos(a);
+    case Elementary::tan: return tan_on_branch(a);
     default: break;
   }
   Nearest nearest;
@@ -197,6 +231,11 @@ Interval derivative(Elementary f, const Interval& x) {
     case Elementary::exp: return exp(x);
     case Elementary::sin: return cos(x);
     case Elementary::cos: return -sin(x);
+    case Elementary::tan: {
+      Interval d = one + boost::numeric::square(tan_on_branch(x));
+      clip(d, 1.0, kInf);  // 1 + tan^2 >= 1
+      return d;
+    }
     default: break;
   }
   Nearest nearest;
@@ -253,6 +292,7 @@ double row_value_float(const Link& l, const double* x) {
     case Elementary::atan: v = std::atan(a); break;
     case Elementary::sin: v = std::sin(a); break;
     case Elementary::cos: v = std::cos(a); break;
+    case Elementary::tan: v = std::tan(a); break;
   }
   return x[l.y] - v;
 }
@@ -273,6 +313,7 @@ double row_derivative_float(const Link& l, const double* x) {
     case Elementary::atan: return -1 / (1 + a * a);
     case Elementary::sin: return -std::cos(a);
     case Elementary::cos: return std::sin(a);
+    case Elementary::tan: return -(1 + std::tan(a) * std::tan(a));
   }
   return 0;
 }

@@ -5,9 +5,11 @@
 //
 // Everything here is an outward-rounded enclosure through MPFI (interval/rigorous.hpp): the
 // images, the derivatives, the inverses. f is defined on its domain (log: x > 0; asin, acos:
-// [-1, 1]; acosh: x >= 1; atanh: -1 < x < 1; the others: every real) and a link holds only
-// there, so a box's part outside the domain holds no point of the link: narrowing a box to
-// the domain (closed: atanh's to [-1, 1], where its image is infinite) loses no root.
+// [-1, 1]; acosh: x >= 1; atanh: -1 < x < 1; tan: every real off its poles; the others: every
+// real) and a link holds only there, so a box's part outside the domain holds no point of the
+// link: narrowing a box to the domain (closed: atanh's to [-1, 1], where its image is infinite)
+// loses no root. tan is enclosed on a box within one branch; on a box that meets a pole
+// (which the lifter keeps out of an argument's domain) nothing is learnt from it.
 #include "interval/box.hpp"
 
 #include <string>
@@ -15,8 +17,11 @@
 
 namespace linkbox::model {
 
-enum class Elementary { exp, log, sinh, cosh, tanh, asinh, acosh, atanh, asin, acos, atan, sin, cos };
+enum class Elementary { exp, log, sinh, cosh, tanh, asinh, acosh, atanh, asin, acos, atan, sin, cos, tan };
 const char* to_string(Elementary f);
+
+// The k with x strictly inside (k pi - pi/2, k pi + pi/2): a branch of tan without a pole.
+bool within_tan_branch(const Interval& x, long& k);
 
 // One link's image, inverse or derivative through MPFI costs about this many interval
 // products (prune::Counters::operations' unit).

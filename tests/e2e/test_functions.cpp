@@ -433,9 +433,7 @@ TEST_CASE("functions of variables: what cannot be lifted is an InputError at its
     std::string part;
   };
   const Bad bad[] = {
-      {R"~({ name = "t", domain = [0, 1] })~", R"~("tan(t) + t")~", 4, "used inside tan(t) and outside"},
-      {R"~({ name = "x", domain = [0, 1] })~", R"~("tan(x^2) - 0.5")~", 6, "must be affine in the variables"},
-      {R"~({ name = "x", domain = [0, 1] })~", R"~("tan(sqrt(x)) - 0.5")~", 6, "contains a function of the variables"},
+      {R"~({ name = "t", domain = [0, 2] })~", R"~("tan(t) + t")~", 6, "meets a pole of tan"},
       {R"~({ name = "t", domain = [0, 7] })~", R"~("sin(t)")~", 4, "spans more than a full turn"},
       {R"~({ name = "t", domain = [0, 2] })~", R"~("tan(t) - 1")~", 6, "meets a pole of tan"},
       {R"~({ name = "x", domain = [0, 1] })~", R"~("sqrt(x - 5) - 1")~", 6, "negative on the whole domain"},

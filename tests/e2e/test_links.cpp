@@ -84,6 +84,29 @@ TEST_CASE("sin of a variable that also occurs outside sin is a link", "[links]")
   check_roots(run, {{t}});
 }
 
+TEST_CASE("tan of a variable that also occurs outside tan is a link", "[links]") {
+  // tan(t) + t = 1: one root, t = 0.479731007280409694724589799077 (mpmath).
+  const auto run = solve_text(polynomial_case(R"~({ name = "t", domain = [-1.5, 1.5] })~", R"~("tan(t) + t = 1")~"));
+  REQUIRE(run.c.formulation->subproblem(0).system.links.size() == 1);
+  check_roots(run, {{0.479731007280409694724589799077L}});
+  // On the next branch, through a new argument unknown: tan(t - 3) + t = 4 at t = 3.4797...
+  const auto shifted = solve_text(polynomial_case(R"~({ name = "t", domain = [2, 4.5] })~", R"~("tan(t - 3) + t = 4")~"));
+  check_roots(shifted, {{3.479731007280409694724589799077L}});
+  // A non-affine argument, and one that is a function of the variables: links too.
+  const auto squared = solve_text(polynomial_case(R"~({ name = "x", domain = [0, 1] })~", R"~("tan(x^2) - 0.5")~"));
+  check_roots(squared, {{0.680916741607082323773933532663L}});  // sqrt(atan(1/2))
+  const auto nested = solve_text(polynomial_case(R"~({ name = "x", domain = [0, 1] })~", R"~("tan(sqrt(x)) - 0.5")~"));
+  check_roots(nested, {{0.214969105332164388710632716684L}});  // atan(1/2)^2
+  // An argument whose range meets a pole is refused, naming it.
+  try {
+    formulate::load_case_text(polynomial_case(R"~({ name = "t", domain = [0, 2] })~", R"~("tan(t) + t = 1")~"),
+                              "pole.toml");
+    FAIL("read without error");
+  } catch (const std::exception& e) {
+    CHECK_THAT(e.what(), Catch::Matchers::Contains("meets a pole of tan"));
+  }
+}
+
 TEST_CASE("a division by an expression with variables is q B = 1", "[links]") {
   // x/(y + 2) = 1 and x + y = 4: (3, 1); y + 2 is in [1, 7] on the domain.
   const auto run = solve_text(polynomial_case(R"~({ name = "x", domain = [0, 10] }, { name = "y", domain = [-1, 5] })~",

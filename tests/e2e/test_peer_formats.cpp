@@ -320,7 +320,7 @@ TEST_CASE("peer formats: every malformed file is an InputError at its line", "[p
        "'x' is already declared on line 2 (as a variable)"},
       {"power.cuik", "[SYSTEM VARS]\nx : [0, 1]\n[SYSTEM EQS]\nx^2.5 = 0;\n", 4,
        "'^' in a .cuik equation takes a non-negative integer"},
-      {"tan.cuik", "[SYSTEM VARS]\nx : [0, 1]\n[SYSTEM EQS]\nTAN(x)*x = 1;\n", 2, "used inside tan(x) and outside"},
+      {"tan.cuik", "[SYSTEM VARS]\nx : [0, 2]\n[SYSTEM EQS]\nTAN(x)*x = 1;\n", 4, "meets a pole of tan"},
       {"search.cuik", "[SYSTEM VARS]\nx : [0, 1]\n[SYSTEM EQS]\nx = 0;\n[SEARCH]\nMIN x\n", 6, "[SEARCH] MIN"},
       {"no-equations.cuik", "[SYSTEM VARS]\nx : [0, 1]\n", 2, "no equations"},
       {"velocity.cuik", "[SYSTEM VARS]\nx : [0, 1]\n[VELOCITY VARS]\n", 3, "section [VELOCITY VARS] is not supported"},

@@ -36,6 +36,7 @@ long double f_acos(long double x) { return acosl(x); }
 long double f_atan(long double x) { return atanl(x); }
 long double f_sin(long double x) { return sinl(x); }
 long double f_cos(long double x) { return cosl(x); }
+long double f_tan(long double x) { return tanl(x); }
 
 const Case kCases[] = {
     {Elementary::exp, -20, 20, f_exp}, {Elementary::log, 1e-3, 50, f_log},
@@ -44,7 +45,7 @@ const Case kCases[] = {
     {Elementary::acos, -0.999, 0.999, f_acos}, {Elementary::atan, -30, 30, f_atan},
     {Elementary::sin, -7, 7, f_sin},          {Elementary::cos, -7, 7, f_cos},
     {Elementary::asinh, -50, 50, f_asinh},    {Elementary::acosh, 1.001, 50, f_acosh},
-    {Elementary::atanh, -0.999, 0.999, f_atanh},
+    {Elementary::atanh, -0.999, 0.999, f_atanh}, {Elementary::tan, -4, 4, f_tan},  // three branches
 };
 
 // The long double value, widened by a few of its ulps: an independent (libm) enclosure.
@@ -100,6 +101,24 @@ TEST_CASE("a link's narrowing never removes a point of the link", "[links][sound
       CHECK(subset(y, box[1]));
     }
   }
+}
+
+TEST_CASE("tan is enclosed on one branch and learns nothing across a pole", "[links]") {
+  const Link tan{Elementary::tan, 1, 0, "tan"};
+  CHECK(model::within_domain(Elementary::tan, Interval(1.5, 1.57)));
+  CHECK_FALSE(model::within_domain(Elementary::tan, Interval(1.5, 1.6)));
+  CHECK(!is_finite(model::image(Elementary::tan, Interval(1.5, 1.6))));
+  CHECK(!is_finite(model::row_value(tan, Interval(0), Interval(1.5, 1.6))));
+  // Across the pole, both tan(1.5) = 14.1 and tan(1.6) = -34.2 stay.
+  Box box{Interval(1.5, 1.6), Interval(-40, 20)};
+  REQUIRE(model::narrow(tan, box));
+  CHECK(box[0].lower() == 1.5);
+  CHECK(box[0].upper() == 1.6);
+  // On the branch around pi, tan(a) in [-1, 1] leaves a in [3 pi / 4, 5 pi / 4].
+  Box branch{Interval(2, 4), Interval(-1, 1)};
+  REQUIRE(model::narrow(tan, branch));
+  CHECK(std::fabs(branch[0].lower() - 3 * M_PI / 4) < 1e-12);
+  CHECK(std::fabs(branch[0].upper() - 5 * M_PI / 4) < 1e-12);
 }
 
 TEST_CASE("a link holds only in its function's domain", "[links]") {
