@@ -232,6 +232,9 @@ Interval derivative(Elementary f, const Interval& x) {
     case Elementary::sin: return cos(x);
     case Elementary::cos: return -sin(x);
     case Elementary::tan: {
+      // Across a pole tan is not continuous, so no slope bound holds there (a mean-value
+      // form over such a box would be false): the whole line, as for any box off the domain.
+      if (!within_domain(Elementary::tan, x)) return kWhole;
       Interval d = one + boost::numeric::square(tan_on_branch(x));
       clip(d, 1.0, kInf);  // 1 + tan^2 >= 1
       return d;

@@ -109,6 +109,8 @@ TEST_CASE("tan is enclosed on one branch and learns nothing across a pole", "[li
   CHECK_FALSE(model::within_domain(Elementary::tan, Interval(1.5, 1.6)));
   CHECK(!is_finite(model::image(Elementary::tan, Interval(1.5, 1.6))));
   CHECK(!is_finite(model::row_value(tan, Interval(0), Interval(1.5, 1.6))));
+  // No slope bound across the pole (tan falls from +inf to -inf there): the whole line.
+  CHECK(model::derivative(Elementary::tan, Interval(1.5, 1.6)).lower() == -kInf);
   // Across the pole, both tan(1.5) = 14.1 and tan(1.6) = -34.2 stay.
   Box box{Interval(1.5, 1.6), Interval(-40, 20)};
   REQUIRE(model::narrow(tan, box));
