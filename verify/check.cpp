@@ -1,11 +1,11 @@
 #include "verify/check.hpp"
 
 #include "newton/certify.hpp"
+#include "verify/check_arguments.hpp"
 #include "verify/check_claims.hpp"
 #include "verify/check_map.hpp"
 #include "verify/check_proofs.hpp"
 #include "verify/check_json.hpp"
-#include "verify/coupled_loops.hpp"
 #include "verify/cluster.hpp"
 #include "verify/exact_point.hpp"
 #include "verify/isolated.hpp"
@@ -112,7 +112,7 @@ class Checker {
     }
     const auto& sys = f_.natural(chart);
     if (status == "certified" && c.contains("argument")) {
-      check_coupled(k, sys);
+      check_argument(k, sys);
     } else if (status == "certified") {
       check_certified(k, sys);
     } else if (status == "empty") {
@@ -200,27 +200,21 @@ class Checker {
     return {};
   }
 
-  // Certified through its loops (verify/coupled_loops.hpp): its square subsystem's root is
-  // unique around the cluster, and the loops' argument, run again, puts a root of every
-  // equation there.
-  void check_coupled(const Entry& k, const formulate::NaturalSystem& sys) {
+  // Certified by an argument for the equations its square subsystem leaves out
+  // (verify/check_arguments.hpp).
+  void check_argument(const Entry& k, const formulate::NaturalSystem& sys) {
     ++out_.checked;
-    std::vector<model::Polynomial> eqs;
-    const newton::Certificate cert = certificate_from(k.c.at("certificate"));
+    const std::string argument = k.c.at("argument");
     const auto start = carried([&] { return f_.output_to_natural(k.chart, k.hull); });
     std::optional<Box> image;
-    bool holds = k.c.at("argument") == "coupled loops" && start && equations_named(k.c, "subsystem", sys.equations, eqs) &&
-                 (image = proved_image(eqs, cert)) && encloses(box_from(k.c.at("certificate").at("image")), *image);
-    if (holds) {
-      const CoupledRoom room = coupled_room(eqs, *start, cert);
-      holds = room.unique && (room.cluster || !k.c.at("certificate").value("unique_in_hull", false)) &&
-              coupled_loops_root(f_, k.chart, cert.box, room.box).proved;
-    }
-    if (!holds) {
-      out_.failures.push_back(k.where + ": the proof of its root through its loops does not hold");
+    if (start && argument == "exact root") image = recheck_exact_root(sys, k.c, *start);
+    if (start && argument == "coupled loops") image = recheck_coupled_loops(f_, k.chart, k.c, *start);
+    if (!image) {
+      out_.failures.push_back(k.where + ": the proof of its root " +
+                              (argument == "coupled loops" ? "through its loops" : "by " + argument) + " does not hold");
       return;
     }
-    check_root(k, sys, cert, *image);
+    check_root(k, sys, certificate_from(k.c.at("certificate")), *image);
   }
 
   void check_empty(const Entry& k, const formulate::NaturalSystem& sys) {

@@ -1,8 +1,7 @@
 #include "verify/check_proofs.hpp"
 
 #include "newton/interval_newton.hpp"
-
-#include <Eigen/LU>
+#include "newton/regular_inverse.hpp"
 
 #include <stdexcept>
 
@@ -60,11 +59,8 @@ bool unique_over(const newton::SquareSystem& s, const Box& start, const newton::
   if (newton::newton_step(c.method, s, y, c.preconditioner).interior) return true;
   if (newton::at_most_one_root(s, y, c.preconditioner)) return true;
   const Eigen::MatrixXd jm = newton::midpoint(s.jacobian(y));
-  if (jm.size() == 0 || !jm.allFinite()) return false;
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jm);
-  if (!(lu.rcond() >= newton::NewtonOptions{}.singular_rcond)) return false;
-  const Eigen::MatrixXd cy = lu.inverse();
-  return cy.allFinite() && newton::at_most_one_root(s, y, cy);
+  const auto cy = newton::regular_inverse(jm, newton::NewtonOptions{}.singular_rcond);
+  return cy && newton::at_most_one_root(s, y, *cy);
 }
 
 }  // namespace

@@ -160,6 +160,33 @@ void certify_coupled(const formulate::Formulation& f, const Box& start, const st
                            : "its cluster hull not proved free of other roots");
 }
 
+namespace {
+
+// An overdetermined polynomial system whose square subsystem has a certified unique root in
+// the box, at a rational point of its image where every natural equation is exactly 0: that
+// point is the subsystem's root, so a root of every equation. The whole system's roots are
+// among the subsystem's, so the subsystem's uniqueness around the cluster is the system's.
+void certify_exact_overdetermined(const formulate::Formulation& f, const formulate::NaturalSystem& sys,
+                                  const Box& start, const std::vector<Box>& members,
+                                  const std::vector<bool>& periodic, ClusterReport& c) {
+  if (c.status != ClusterStatus::unverified || c.subsystem.empty() || !sys.links.empty() ||
+      c.certificate.status != newton::Status::certified)
+    return;
+  auto p = exact_zero_in(sys.equations, c.certificate.image);
+  if (!p || (!sys.domain.empty() && !c.certificate.root_in_domain && !rationals_in(*p, sys.domain))) return;
+  c.exact_root = std::move(*p);
+  c.certificate.root_in_domain = true;
+  c.certificate.unique_in_hull = unique_over(pick(sys.equations, c.subsystem), start, c.certificate);
+  accept_root(f, members, periodic, c);
+  c.argument = "exact root";
+  const size_t e = sys.equations.size(), u = sys.unknowns.size();
+  c.reason = "certified: all " + count(e, "equation", "equations") + " are exactly 0 at a rational point of the box where " +
+             std::to_string(u) + " of them have a unique root; " +
+             (c.certificate.unique_in_hull ? "no other root in the cluster" : "its cluster hull not proved free of other roots");
+}
+
+}  // namespace
+
 void certify_isolated(const formulate::Formulation& f, const formulate::NaturalSystem& sys, const Box& start,
                       const std::vector<Box>& members, const std::vector<bool>& periodic, ClusterReport& c,
                       const newton::NewtonOptions& options) {
@@ -170,6 +197,7 @@ void certify_isolated(const formulate::Formulation& f, const formulate::NaturalS
   }
   if (sys.equations.size() + sys.links.size() != n) {
     examine_not_square(sys, start, c, options);
+    certify_exact_overdetermined(f, sys, start, members, periodic, c);
     return;
   }
   c.certificate = newton::certify_root(newton::SquareSystem::all_unknown(sys.compiled), start, sys.domain, options);

@@ -2,6 +2,7 @@
 
 #include "newton/float_system.hpp"
 #include "newton/interval_newton.hpp"
+#include "newton/regular_inverse.hpp"
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
@@ -39,12 +40,7 @@ std::optional<std::pair<Eigen::VectorXd, Eigen::VectorXd>> curve_point(const Flo
 // The float inverse of `j`, empty when it is singular or not finite. Any C keeps a Krawczyk
 // test sound; this one only makes it succeed.
 std::optional<Eigen::MatrixXd> inverse_of(const Eigen::MatrixXd& j) {
-  if (j.size() == 0 || !j.allFinite()) return std::nullopt;
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(j);
-  if (!(lu.rcond() >= NewtonOptions{}.singular_rcond)) return std::nullopt;
-  Eigen::MatrixXd c = lu.inverse();
-  if (!c.allFinite()) return std::nullopt;
-  return c;
+  return regular_inverse(j, NewtonOptions{}.singular_rcond);
 }
 
 // The parametric Krawczyk step over B = box (t its side p, Y the others), in mean-value form

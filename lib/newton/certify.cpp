@@ -1,5 +1,7 @@
 #include "newton/certify.hpp"
 
+#include "newton/regular_inverse.hpp"
+
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
@@ -47,16 +49,6 @@ bool near_hull(const Box& hull, const Eigen::VectorXd& x, double margin) {
   return true;
 }
 
-// Float inverse; empty when singular at the given reciprocal condition number.
-std::optional<Eigen::MatrixXd> inverse(const Eigen::MatrixXd& j, double min_rcond) {
-  if (j.size() == 0 || !j.allFinite()) return std::nullopt;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu(j);
-  if (!(lu.rcond() >= min_rcond)) return std::nullopt;
-  Eigen::MatrixXd c = lu.inverse();
-  if (!c.allFinite()) return std::nullopt;
-  return c;
-}
-
 // Proves that the interval matrix `j` holds a singular matrix, so that no Newton test can
 // succeed on its box: with M the midpoint and v a float null vector of M (its last right
 // singular vector), S = M - (M v) v^T / (v^T v) has S v = 0 exactly, and S lies in `j` when the
@@ -92,9 +84,9 @@ FloatRoot float_newton(const SquareSystem& s, Eigen::VectorXd x, const NewtonOpt
     Eigen::MatrixXd j = s.jacobian_at(x);
     if (!fx.allFinite() || !j.allFinite()) return {x, false, false};
     if (fx.isZero(0)) break;
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(j);
-    if (!(lu.rcond() >= o.singular_rcond)) return {x, true, true};
-    Eigen::VectorXd dx = lu.solve(fx);
+    const auto solved = regular_solve(j, fx, o.singular_rcond);
+    if (!solved) return {x, true, true};
+    const Eigen::VectorXd& dx = *solved;
     if (!dx.allFinite()) return {x, false, false};
     x -= dx;
     const double step = dx.lpNorm<Eigen::Infinity>(), size = x.lpNorm<Eigen::Infinity>();
@@ -140,7 +132,7 @@ bool unique_over(const SquareSystem& s, const Box& hull, const Box& x, const Eig
   if (contains(x, hull)) return true;
   Box y = linkbox::hull(hull, x);
   if (at_most_one_root(s, y, c)) return true;
-  auto cy = inverse(midpoint(s.jacobian(y)), o.singular_rcond);
+  auto cy = regular_inverse(midpoint(s.jacobian(y)), o.singular_rcond);
   return cy && at_most_one_root(s, y, *cy);
 }
 
@@ -199,7 +191,7 @@ struct Passing {
 std::optional<Certificate> test_hull(const SquareSystem& s, const Box& hull, const NewtonOptions& o,
                                      Certificate cert, std::optional<Passing>& passing) {
   cert.point = to_std(centre_of(hull));
-  if (auto ch = inverse(midpoint(s.jacobian(hull)), o.singular_rcond)) {
+  if (auto ch = regular_inverse(midpoint(s.jacobian(hull)), o.singular_rcond)) {
     NewtonStep hs = newton_step(o.method, s, hull, *ch);
     if (hs.excluded) {
       cert.image = hs.image, cert.preconditioner = *ch;
@@ -244,7 +236,7 @@ std::optional<Certificate> inflate_float_root(const SquareSystem& s, const Box& 
       first_failure->reason = Reason::singular_in_box;
     return *first_failure;
   }
-  auto ci = inverse(s.jacobian_at(root), o.singular_rcond);
+  auto ci = regular_inverse(s.jacobian_at(root), o.singular_rcond);
   if (!ci) return fail(cert, holds_singular_matrix(s.jacobian(hull)) ? Reason::singular_in_box : Reason::singular_jacobian);
   const Eigen::MatrixXd c = *ci;
   cert.preconditioner = c;

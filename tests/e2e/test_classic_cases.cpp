@@ -1,0 +1,61 @@
+// Classic systems of cases/classic/ (papers/reliability/classic.md) whose answers are known
+// independently of linkbox.
+#include "formulate/load.hpp"
+#include "tests/solved_case.hpp"
+#include "verify/check.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+using namespace linkbox;
+
+// Morgan's combustion system: unknowns near 1e-5 to 1e-11, coefficients down to 1e-15, so its
+// Jacobian's plain reciprocal condition is far below the singular threshold although every
+// root is regular. Equations 4 and 7 alone give x4 in closed form: 2 x4^2 / a7 + x4 = 1e-5.
+TEST_CASE("classic: the combustion system's four roots certify despite its scaling", "[classic]") {
+  auto run = test::solve_loaded(formulate::load_case(std::string(LINKBOX_SOURCE_DIR) + "/cases/classic/combustion.bch"),
+                                "hc4,newton/lp", 1e-4);
+  CHECK(run.v.exact);
+  REQUIRE(run.roots.size() == 4);
+  const double a7 = 0.7816278e-15, d = std::sqrt(1 + 8e-5 / a7);
+  for (double x4 : {(-1 + d) * a7 / 4, (-1 - d) * a7 / 4}) {
+    int holding = 0;
+    for (const Box& r : run.roots) holding += r[3].lower() <= x4 + 1e-12 * std::fabs(x4) && x4 - 1e-12 * std::fabs(x4) <= r[3].upper();
+    CHECK(holding == 2);
+  }
+  CHECK(verify::check_certificates(run.j, *run.c.formulation).failures.empty());
+}
+
+namespace {
+
+std::string beale(const std::string& third_constant) {
+  return "Variables\nx1 in [-10,10];\nx2 in [-10,10];\nConstraints\n1.5 - x1*(1 - x2) = 0;\n"
+         "2.25 - x1*(1 - x2^2) = 0;\n" + third_constant + " - x1*(1 - x2^3) = 0;\nend\n";
+}
+
+}  // namespace
+
+// Beale's three equations in two unknowns have the one root (3, 1/2). The two first equations
+// certify it; the third is exactly 0 there, which makes it a root of all three. With the third
+// constant moved by 2^-51 (one ulp) the third equation still contains 0 over the certified box but is
+// not 0 at the root: no root then, and nothing may be certified.
+TEST_CASE("classic: an overdetermined system's exact root is certified, a near miss is not", "[classic]") {
+  auto run = test::solve_loaded(formulate::load_case_text(beale("2.625"), "beale.bch"), "hc4,newton", 1e-8);
+  CHECK(run.v.exact);
+  REQUIRE(run.roots.size() == 1);
+  CHECK((run.roots[0][0].lower() <= 3 && 3 <= run.roots[0][0].upper()));
+  CHECK((run.roots[0][1].lower() <= 0.5 && 0.5 <= run.roots[0][1].upper()));
+  CHECK(verify::check_certificates(run.j, *run.c.formulation).failures.empty());
+  nlohmann::json forged = run.j;
+  int forged_roots = 0;
+  for (auto& c : forged.at("clusters"))
+    if (c.value("argument", "") == "exact root") c["exact_root"] = {"3", "1/3"}, ++forged_roots;
+  REQUIRE(forged_roots == 1);
+  CHECK_FALSE(verify::check_certificates(forged, *run.c.formulation).failures.empty());
+
+  auto near = test::solve_loaded(formulate::load_case_text(beale("(2.625 + 2^-51)"), "near.bch"), "hc4,newton", 1e-8);
+  CHECK(near.roots.empty());
+  CHECK_FALSE(near.v.exact);
+}
