@@ -6,7 +6,8 @@ either for (papers/reliability/classic.md). Run it here to rewrite the .bch file
 Sources: Katsura, cyclic-n, Reimer-n and Noon-n as in the PoSSo / PHCpack test suites; Trinks
 (the 6-equation form); Morgan's combustion system; Moré, Garbow and Hillstrom's test functions
 (Powell singular, Powell badly scaled, helical valley, Freudenstein-Roth, Beale, Brown badly
-scaled, box three-dimensional, Chebyquad)."""
+scaled, box three-dimensional, Chebyquad, variably dimensioned, Bard, Wood, extended Powell
+singular, Rosenbrock); Chandrasekhar's H-equation discretised (Moré's form, multiplied out)."""
 import pathlib
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -124,3 +125,38 @@ write("brown-badly-scaled", [("x1", "[-1e7,1e7]"), ("x2", "[-1e7,1e7]")], [
 write("box-3d", [("x1", "[0,20]"), ("x2", "[0,20]"), ("x3", "[-5,5]")], [
     f"exp(-{t}*x1) - exp(-{t}*x2) - x3*(exp(-{t}) - exp(-10*{t}))" for t in ("0.1", "0.2", "0.3")],
     "Box three-dimensional (MGH 12) with m = 3: roots (1, 10, 1), (10, 1, -1) and the line x1 = x2, x3 = 0")
+
+
+def variably_dimensioned(n):
+    x = [f"x{i}" for i in range(1, n + 1)]
+    s = " + ".join(f"{j + 1}*({v} - 1)" for j, v in enumerate(x))
+    write(f"variably-dimensioned-{n}", [(v, "[-10,10]") for v in x], [f"{v} - 1" for v in x] + [s, f"({s})^2"],
+          f"Variably dimensioned (MGH 25), n = {n}: {n + 2} equations, the root (1, ..., 1)")
+
+
+def chandrasekhar(n, c):
+    # h_i (1 - c/(2n) sum_j mu_i h_j / (mu_i + mu_j)) = 1, mu_i = (i - 1/2)/n.
+    h = [f"h{i}" for i in range(1, n + 1)]
+    mu = [(2 * i - 1) / (2 * n) for i in range(1, n + 1)]
+    eqs = []
+    for i, hi in enumerate(h):
+        terms = " + ".join(f"{mu[i] / (mu[i] + mu[j]):.17g}*{hj}" for j, hj in enumerate(h))
+        eqs.append(f"{hi}*(1 - {c / (2 * n):.17g}*({terms})) - 1")
+    write(f"chandrasekhar-{n}", [(v, "[-10,10]") for v in h], eqs, f"Chandrasekhar's H-equation, n = {n}, c = {c}")
+
+
+variably_dimensioned(4)
+chandrasekhar(6, 0.9)
+BARD_Y = [0.14, 0.18, 0.22, 0.25, 0.29, 0.32, 0.35, 0.39, 0.37, 0.58, 0.73, 0.96, 1.34, 2.10, 4.39]
+write("bard", [("x1", "[-10,10]"), ("x2", "[0.1,10]"), ("x3", "[0.1,10]")], [
+    f"{y} - (x1 + {i}/({16 - i}*x2 + {min(i, 16 - i)}*x3))" for i, y in enumerate(BARD_Y, 1)],
+    "Bard (MGH 8): 15 equations in 3 unknowns with no root (least squares residual 8.2e-3)")
+write("wood-integer", [(f"x{i}", "[-10,10]") for i in range(1, 5)], [
+    "10*(x2 - x1^2)", "1 - x1", "9*(x4 - x3^2)", "1 - x3", "3*(x2 + x4 - 2)", "(x2 - x4)/3"],
+    "after Wood (MGH 14), with integer weights: 6 equations in 4 unknowns, the root (1, 1, 1, 1)")
+write("extended-powell-8", [(f"x{i}", "[-10,10]") for i in range(1, 9)], [
+    e for k in (0, 4) for e in (f"x{k + 1} + 10*x{k + 2}", f"sqrt(5)*(x{k + 3} - x{k + 4})",
+                                f"(x{k + 2} - 2*x{k + 3})^2", f"sqrt(10)*(x{k + 1} - x{k + 4})^2")],
+    "Extended Powell singular (MGH 22), n = 8: the one root 0, singular")
+write("rosenbrock", [("x1", "[-10,10]"), ("x2", "[-10,10]")], ["10*(x2 - x1^2)", "1 - x1"],
+      "Rosenbrock (MGH 1): root (1, 1)")

@@ -32,6 +32,12 @@ NOTES = {
                               "interval and no exact root can be placed: linkbox leaves the one cluster "
                               "'overdetermined: 2 of 3 equations have a unique root in the box'.",
     "powell-singular.bch": "the only root, 0, has a singular Jacobian (rank 2): neither tool certifies it.",
+    "extended-powell-8.bch": "two copies of Powell singular: the root 0 is singular, neither tool certifies it.",
+    "variably-dimensioned-4.bch": "six equations in four unknowns; linkbox certifies (1, 1, 1, 1) as an exact root "
+                                  "of all six (argument \"exact root\").",
+    "wood-integer.bch": "six equations in four unknowns with the root (1, 1, 1, 1); the weight 1/3 is not a double, "
+                        "so its equation's coefficients are intervals and no exact root can be placed: linkbox "
+                        "leaves the cluster 'overdetermined: 4 of 6 equations have a unique root in the box'.",
     "box-3d.bch": "besides (1, 10, 1) and (10, 1, -1), the line x1 = x2, x3 = 0 is in the solution set: "
                   "neither tool finishes covering it at its precision.",
 }
@@ -59,7 +65,8 @@ def render(_args):
              "Regenerate: `/usr/bin/python3 papers/reliability/classic.py run --linkbox build/linkbox` "
              "(about 5 minutes; `render` rewrites this page from `classic.csv`).", "",
              "The %d files of `cases/classic/` (Katsura, cyclic, Reimer, Noon, Chebyquad, Trinks, Morgan's "
-             "combustion system and Moré-Garbow-Hillstrom test functions; `make_classic.py` writes them), "
+             "combustion system, Chandrasekhar's H-equation and Moré-Garbow-Hillstrom test functions; "
+             "`make_classic.py` writes them), "
              "run by `../shared/tools/corpus.py` as in `papers/benchmarks/corpus.md` with a CPU limit of "
              "%s s, one run at a time; machine %s, %s cores, runs from %s to %s (UTC)." % (
                  len(files), m.get("limit", "?"), m.get("host", "?"), m.get("nproc", "?"),
