@@ -169,12 +169,11 @@ namespace {
 void certify_exact_overdetermined(const formulate::Formulation& f, const formulate::NaturalSystem& sys,
                                   const Box& start, const std::vector<Box>& members,
                                   const std::vector<bool>& periodic, ClusterReport& c) {
-  if (c.status != ClusterStatus::unverified || c.subsystem.empty() || !sys.links.empty() ||
-      c.certificate.status != newton::Status::certified)
+  if (c.status != ClusterStatus::unverified || c.subsystem.empty() || !find_exact_root(sys, c)) return;
+  if (!sys.domain.empty() && !c.certificate.root_in_domain && !rationals_in(c.exact_root, sys.domain)) {
+    c.exact_root.clear();  // a root of the system, but not proved in the domain: stays a candidate
     return;
-  auto p = exact_zero_in(sys.equations, c.certificate.image);
-  if (!p || (!sys.domain.empty() && !c.certificate.root_in_domain && !rationals_in(*p, sys.domain))) return;
-  c.exact_root = std::move(*p);
+  }
   c.certificate.root_in_domain = true;
   c.certificate.unique_in_hull = unique_over(pick(sys.equations, c.subsystem), start, c.certificate);
   accept_root(f, members, periodic, c);

@@ -2,7 +2,6 @@
 
 #include "newton/regular_inverse.hpp"
 
-#include <Eigen/LU>
 #include <Eigen/SVD>
 
 #include <algorithm>
