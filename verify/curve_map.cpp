@@ -1,6 +1,7 @@
 #include "verify/curve_map.hpp"
 
 #include "verify/cluster.hpp"
+#include "verify/exact_point.hpp"
 #include "verify/subsystem.hpp"
 
 #include <algorithm>
@@ -97,7 +98,10 @@ void state_map(CurveMap& map) {
   if (!map.unresolved.empty())
     why += std::string(why.empty() ? "" : "; ") + plural(map.unresolved.size(), "piece", "pieces") +
            " where no arc was proved, in " + plural(map.singular_regions.size(), "region", "regions") +
-           " (possible singular points)";
+           (map.inexact_coefficients ? " (possible singular points, which cannot be proved here: some coefficients "
+                                       "are not doubles, e.g. a decimal 0.1, and a singular point is proved in exact "
+                                       "arithmetic)"
+                                     : " (possible singular points)");
   if (map.undecided_ends) why += std::string(why.empty() ? "" : "; ") + plural(map.undecided_ends, "arc end", "arc ends") + " not placed";
   if (map.loose_ends) why += std::string(why.empty() ? "" : "; ") + plural(map.loose_ends, "arc end", "arc ends") + " not continued";
   map.statement = "arcs joined into " + plural(map.components.size(), "branch", "branches") + ", not proved: " + why;
@@ -385,6 +389,10 @@ bool find_singular_points(const formulate::Formulation& f, CurveMap& map, const 
     const std::uint64_t chart = map.charts[member];
     if (failures >= kSingularTries) break;
     if (near_singular(map.singular_points, chart, piece) != Near::apart) continue;
+    if (f.kind() == "polynomial" && !point_coefficients(f.natural(chart).equations)) {
+      map.inexact_coefficients = true;
+      continue;
+    }
     auto p = prove_singular_point(f.natural(chart).equations, chart, piece, kSingularReach * max_width(piece), options);
     const bool known = p && std::any_of(map.singular_points.begin(), map.singular_points.end(), [&](auto& q) {
       return q.chart == chart && q.point == p->point;

@@ -71,6 +71,7 @@ json map_json(const CurveMap& map) {
           {"singular_points", singular},
           {"arcs", arcs}};
   if (map.subspace_variable >= 0) out["subspace_variable"] = map.subspace_variable;
+  if (map.inexact_coefficients) out["inexact_coefficients"] = true;
   return out;
 }
 
@@ -97,6 +98,7 @@ CurveMap map_from(const json& j) {
     s.branches = p.at("branches");
     map.singular_points.push_back(std::move(s));
   }
+  map.inexact_coefficients = j.value("inexact_coefficients", false);
   map.undecided_ends = j.at("undecided_ends");
   map.loose_ends = j.at("loose_ends");
   for (auto& u : j.at("unresolved")) map.unresolved.emplace_back(u.at("member").get<size_t>(), exact_box(u.at("piece")));

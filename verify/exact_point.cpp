@@ -235,6 +235,13 @@ std::optional<std::vector<std::string>> exact_zero_in(const std::vector<model::P
   return point;
 }
 
+bool point_coefficients(const std::vector<model::Polynomial>& f) {
+  for (auto& p : f)
+    for (auto& term : p.terms())
+      if (!exact(term.second)) return false;
+  return true;
+}
+
 bool exact_zero(const std::vector<model::Polynomial>& f, const std::vector<std::string>& point) {
   const auto x = parse_all(point);
   return x && zero_at(f, *x);

@@ -38,6 +38,9 @@ bool rational_in(const std::string& text, const Interval& x);
 
 // That point of `box`, one rational per unknown; none when some equation is not exactly 0.
 std::optional<std::vector<std::string>> exact_zero_in(const std::vector<model::Polynomial>& f, const Box& box);
+// Whether every coefficient of `f` is a double (a point interval), as every exact test here
+// needs: a decimal such as 0.1 is held as an interval around it, whose exact value is lost.
+bool point_coefficients(const std::vector<model::Polynomial>& f);
 // Whether every equation of `f` is exactly 0 at `point`.
 bool exact_zero(const std::vector<model::Polynomial>& f, const std::vector<std::string>& point);
 // Whether `point` lies in `box` (exact comparisons).

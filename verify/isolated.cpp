@@ -169,7 +169,12 @@ namespace {
 void certify_exact_overdetermined(const formulate::Formulation& f, const formulate::NaturalSystem& sys,
                                   const Box& start, const std::vector<Box>& members,
                                   const std::vector<bool>& periodic, ClusterReport& c) {
-  if (c.status != ClusterStatus::unverified || c.subsystem.empty() || !find_exact_root(sys, c)) return;
+  if (c.status != ClusterStatus::unverified || c.subsystem.empty()) return;
+  if (!find_exact_root(sys, c)) {
+    if (f.kind() == "polynomial" && sys.links.empty() && !point_coefficients(sys.equations))
+      c.reason += "; no exact root can be placed: some coefficients are not doubles (e.g. a decimal 0.1)";
+    return;
+  }
   if (!sys.domain.empty() && !c.certificate.root_in_domain && !rationals_in(c.exact_root, sys.domain)) {
     c.exact_root.clear();  // a root of the system, but not proved in the domain: stays a candidate
     return;

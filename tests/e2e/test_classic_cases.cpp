@@ -59,3 +59,20 @@ TEST_CASE("classic: an overdetermined system's exact root is certified, a near m
   CHECK(near.roots.empty());
   CHECK_FALSE(near.v.exact);
 }
+
+// Beale with its first equation divided by 10: the same root, but 0.15 and 0.1 are intervals
+// around the decimals, so no exact root can be checked and the cluster says why; the near miss
+// above has double coefficients, so its reason does not.
+TEST_CASE("classic: decimal coefficients leave an overdetermined root a candidate, and say why", "[classic]") {
+  std::string text = beale("2.625");
+  const std::string from = "1.5 - x1*(1 - x2) = 0;";
+  text.replace(text.find(from), from.size(), "0.15 - 0.1*x1*(1 - x2) = 0;");
+  auto run = test::solve_loaded(formulate::load_case_text(text, "beale-decimal.bch"), "hc4,newton", 1e-8);
+  CHECK(run.roots.empty());
+  CHECK_FALSE(run.v.exact);
+  int told = 0;
+  for (auto& c : run.v.clusters) told += c.reason.find("no exact root can be placed: some coefficients are not doubles") != std::string::npos;
+  CHECK(told == 1);
+  auto near = test::solve_loaded(formulate::load_case_text(beale("(2.625 + 2^-51)"), "near.bch"), "hc4,newton", 1e-8);
+  for (auto& c : near.v.clusters) CHECK(c.reason.find("not doubles") == std::string::npos);
+}

@@ -141,6 +141,9 @@ TEST_CASE("an avoided crossing has no singular point and no proved map", "[verif
   const auto [file, from, to] = GENERATE(
       std::tuple<std::string, std::string, std::string>{"cases/curves/fourbar-parallelogram.toml", " - 9\"", " - 9.00000001\""},
       std::tuple<std::string, std::string, std::string>{"cases/curves/fourbar-parallelogram.toml", " - 9\"", " - 8.99999999\""},
+      // 9 + 2^-27, a double: the exact test runs, and finds no zero.
+      std::tuple<std::string, std::string, std::string>{"cases/curves/fourbar-parallelogram.toml", " - 9\"",
+                                                        " - 9.000000007450580596923828125\""},
       std::tuple<std::string, std::string, std::string>{"cases/curves/viviani.toml", "y^2 - 1\"", "y^2 - 1.00000001\""},
       std::tuple<std::string, std::string, std::string>{"cases/curves/viviani.toml", "y^2 - 1\"", "y^2 - 0.99999999\""});
   std::string text = read(file);
@@ -153,6 +156,30 @@ TEST_CASE("an avoided crossing has no singular point and no proved map", "[verif
   CHECK(m.v.singular_points == 0);
   for (auto& c : m.v.clusters)
     if (c.map) CHECK(c.map->singular_points.empty());
+}
+
+TEST_CASE("decimal coefficients: no singular point is tried, and the run says why and what to write", "[verify][map][cli]") {
+  // The parallelogram four-bar with lengths 0.1 and 0.3: the same change points, but 0.1, 0.09
+  // and 0.3 are intervals around the decimals, so no exact zero can be checked.
+  std::string text = read("cases/curves/fourbar-parallelogram.toml");
+  const std::string from = "\"(3 + c3 - c1)^2 + (s3 - s1)^2 - 9\"";
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, from.size(), "\"(0.3 + 0.1*c3 - 0.1*c1)^2 + (0.1*s3 - 0.1*s1)^2 - 0.09\"");
+  const Mapped m = solve_text(text, "decimal-parallelogram.toml", "auto", 0.05);
+  REQUIRE(m.v.clusters.size() == 1);
+  const auto& map = m.v.clusters[0].map;
+  REQUIRE(map);
+  CHECK_FALSE(map->proved);
+  CHECK(map->singular_points.empty());
+  CHECK(map->inexact_coefficients);
+  CHECK(map->statement.find("not doubles") != std::string::npos);
+  const std::string file = test::scratch("decimal-parallelogram.toml");
+  std::ofstream(file) << text;
+  const test::Ran r = test::run_cli("solve " + file + " --threads 1 --quiet");
+  CHECK(r.code == 4);
+  CHECK(r.out.find("linkbox: next: exact arithmetic") != std::string::npos);
+  CHECK(r.out.find("integers or binary fractions") != std::string::npos);
 }
 
 TEST_CASE("a nearly mobile 6R loop is never a proved curve", "[verify][map]") {
