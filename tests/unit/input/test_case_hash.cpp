@@ -6,13 +6,16 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 using linkbox::input::case_sha256;
 
 namespace {
 
 // The digest of a file holding `bytes`, written and removed here.
 std::string digest_of(const std::string& bytes) {
-  const auto path = std::filesystem::temp_directory_path() / "linkbox-test-case-hash";
+  // One name per process: test runs side by side (ctest -j, two builds) do not share the file.
+  const auto path = std::filesystem::temp_directory_path() / ("linkbox-test-case-hash-" + std::to_string(::getpid()));
   std::ofstream(path, std::ios::binary) << bytes;
   const std::string digest = case_sha256(path.string());
   std::filesystem::remove(path);
