@@ -384,15 +384,17 @@ constexpr double kSingularReach = 4;
 // piece not already by a found one); true when it found any.
 bool find_singular_points(const formulate::Formulation& f, CurveMap& map, const newton::NewtonOptions& options) {
   if (map.subspace_variable >= 0) return false;
+  // A polynomial case has one natural system, whatever the chart.
+  if (f.kind() == "polynomial" && !map.unresolved.empty() &&
+      !point_coefficients(f.natural(map.charts[map.unresolved[0].first]).equations)) {
+    map.inexact_coefficients = true;
+    return false;
+  }
   int failures = 0;
   for (auto& [member, piece] : map.unresolved) {
     const std::uint64_t chart = map.charts[member];
     if (failures >= kSingularTries) break;
     if (near_singular(map.singular_points, chart, piece) != Near::apart) continue;
-    if (f.kind() == "polynomial" && !point_coefficients(f.natural(chart).equations)) {
-      map.inexact_coefficients = true;
-      continue;
-    }
     auto p = prove_singular_point(f.natural(chart).equations, chart, piece, kSingularReach * max_width(piece), options);
     const bool known = p && std::any_of(map.singular_points.begin(), map.singular_points.end(), [&](auto& q) {
       return q.chart == chart && q.point == p->point;
