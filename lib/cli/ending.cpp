@@ -47,7 +47,7 @@ bool any_reason(const verify::VerifyReport& v, const char* words) {
 
 bool not_doubles_in_maps(const verify::VerifyReport& v) {
   for (auto& cl : v.clusters)
-    if (cl.map && !cl.map->proved && cl.map->statement.find("not doubles") != std::string::npos) return true;
+    if (cl.map && !cl.map->proved && cl.map->inexact_coefficients) return true;
   return false;
 }
 
