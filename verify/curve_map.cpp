@@ -99,8 +99,8 @@ void state_map(CurveMap& map) {
     why += std::string(why.empty() ? "" : "; ") + plural(map.unresolved.size(), "piece", "pieces") +
            " where no arc was proved, in " + plural(map.singular_regions.size(), "region", "regions") +
            (map.inexact_coefficients ? " (possible singular points, which cannot be proved here: some coefficients "
-                                       "are not doubles, e.g. a decimal 0.1, and a singular point is proved in exact "
-                                       "arithmetic)"
+                                       "have no exact value, e.g. pi or sqrt(2), and a singular point is proved in "
+                                       "exact arithmetic)"
                                      : " (possible singular points)");
   if (map.undecided_ends) why += std::string(why.empty() ? "" : "; ") + plural(map.undecided_ends, "arc end", "arc ends") + " not placed";
   if (map.loose_ends) why += std::string(why.empty() ? "" : "; ") + plural(map.loose_ends, "arc end", "arc ends") + " not continued";
@@ -386,7 +386,7 @@ bool find_singular_points(const formulate::Formulation& f, CurveMap& map, const 
   if (map.subspace_variable >= 0) return false;
   // A polynomial case has one natural system, whatever the chart.
   if (f.kind() == "polynomial" && !map.unresolved.empty() &&
-      !point_coefficients(f.natural(map.charts[map.unresolved[0].first]).equations)) {
+      !known_coefficients(f.natural(map.charts[map.unresolved[0].first]).equations)) {
     map.inexact_coefficients = true;
     return false;
   }

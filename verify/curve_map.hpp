@@ -62,8 +62,8 @@ struct CurveMap {
   // covered by it, and arcs may end there. What the solution set is inside U, beyond its
   // one singular point, is not stated.
   std::vector<SingularPoint> singular_points;
-  // A polynomial case whose equations have a coefficient that is not a double (a decimal):
-  // no singular point can be proved (exact arithmetic needs the coefficients exactly).
+  // A polynomial case whose equations have a coefficient with no known exact value (pi,
+  // sqrt(2)): no singular point can be proved (exact arithmetic needs the coefficients).
   bool inexact_coefficients = false;
   int undecided_ends = 0;  // end enclosures that straddle another arc's box
   int loose_ends = 0;      // ends inside the domain that no other arc's box holds

@@ -1,5 +1,7 @@
 #include "verify/exact_point.hpp"
 
+#include "model/exact_coefficients.hpp"
+
 #include <boost/multiprecision/gmp.hpp>
 #include <mpfi.h>
 
@@ -9,7 +11,7 @@ namespace linkbox::verify {
 
 namespace {
 
-using Q = boost::multiprecision::mpq_rational;
+using Q = model::Rational;
 using Vec = std::vector<Q>;
 using Mat = std::vector<Vec>;
 
@@ -41,16 +43,10 @@ std::optional<Q> parse(const std::string& text) {
   }
 }
 
-// Every coefficient a point, as an exact rational; none otherwise.
-std::optional<Q> exact(const Interval& c) {
-  if (!(c.lower() == c.upper()) || !std::isfinite(c.lower())) return std::nullopt;
-  return Q(c.lower());
-}
-
 std::optional<Q> eval(const model::Polynomial& p, const Vec& x) {
   Q sum = 0;
   for (auto& [powers, coefficient] : p.terms()) {
-    auto c = exact(coefficient);
+    auto c = model::exact_coefficient(p, powers, coefficient);
     if (!c) return std::nullopt;
     Q term = *c;
     for (auto [v, e] : powers) {
@@ -235,10 +231,10 @@ std::optional<std::vector<std::string>> exact_zero_in(const std::vector<model::P
   return point;
 }
 
-bool point_coefficients(const std::vector<model::Polynomial>& f) {
+bool known_coefficients(const std::vector<model::Polynomial>& f) {
   for (auto& p : f)
-    for (auto& term : p.terms())
-      if (!exact(term.second)) return false;
+    for (auto& [powers, c] : p.terms())
+      if (!model::exact_coefficient(p, powers, c)) return false;
   return true;
 }
 

@@ -22,7 +22,7 @@ const char* to_string(SingularKind k);
 // > hi, an end is not finite, or no such rational is found within a bounded search.
 std::optional<std::string> simplest_rational(double lo, double hi);
 
-// When every coefficient of `h` is a point, `point` (rationals as simplest_rational writes
+// When every coefficient of `h` has a known exact value (model/exact_coefficients.hpp), `point` (rationals as simplest_rational writes
 // them, one per unknown) is an exact zero of every equation, and the Jacobian there has rank
 // exactly n - 2: the kind of that singular point. Otherwise none.
 std::optional<SingularKind> exact_singular_kind(const std::vector<model::Polynomial>& h,
@@ -32,22 +32,23 @@ std::optional<SingularKind> exact_singular_kind(const std::vector<model::Polynom
 bool rational_in(const std::string& text, const Interval& x);
 
 // Exact roots. A certified root's box may hold a rational point (the simplest rational in
-// each side) where every equation, its coefficients points, is exactly zero: that point is
+// each side) where every equation, at its coefficients' exact values, is exactly zero: that point is
 // the root, the only one in the box. Where it lies is then decided exactly, also on a face of
 // the domain or on an inequality's boundary, where enclosures cannot tell.
 
 // That point of `box`, one rational per unknown; none when some equation is not exactly 0.
 std::optional<std::vector<std::string>> exact_zero_in(const std::vector<model::Polynomial>& f, const Box& box);
-// Whether every coefficient of `f` is a double (a point interval), as every exact test here
-// needs: a decimal such as 0.1 is held as an interval around it, whose exact value is lost.
-bool point_coefficients(const std::vector<model::Polynomial>& f);
+// Whether the exact value of every coefficient of `f` is known, as every exact test here
+// needs: a double, a decimal as written (0.1), and what exact arithmetic makes of them are;
+// pi, a function's value (sin(1), sqrt(2)) and an interval constant are not.
+bool known_coefficients(const std::vector<model::Polynomial>& f);
 // Whether every equation of `f` is exactly 0 at `point`.
 bool exact_zero(const std::vector<model::Polynomial>& f, const std::vector<std::string>& point);
 // Whether `point` lies in `box` (exact comparisons).
 bool rationals_in(const std::vector<std::string>& point, const Box& box);
 // Both: `point` is a root of `f` in `box` (with a certificate's image, the root there).
 bool exact_root_in(const std::vector<model::Polynomial>& f, const std::vector<std::string>& point, const Box& box);
-// The side of `c` at `point`: a polynomial inequality by the exact sign of g (point
+// The side of `c` at `point`: a polynomial inequality by the exact sign of g (known
 // coefficients; otherwise boundary), an angle's domain arc by the point's angle theta on the
 // unit circle. theta + 2 k pi is never a double unless it is 0 (at (1, 0), theta = 0 exactly;
 // at any other rational point of the circle e^{i theta} is algebraic with theta != 0, so by

@@ -171,8 +171,8 @@ void certify_exact_overdetermined(const formulate::Formulation& f, const formula
                                   const std::vector<bool>& periodic, ClusterReport& c) {
   if (c.status != ClusterStatus::unverified || c.subsystem.empty()) return;
   if (!find_exact_root(sys, c)) {
-    if (f.kind() == "polynomial" && sys.links.empty() && !point_coefficients(sys.equations))
-      c.reason += "; no exact root can be placed: some coefficients are not doubles (e.g. a decimal 0.1)";
+    if (f.kind() == "polynomial" && sys.links.empty() && !known_coefficients(sys.equations))
+      c.reason += "; no exact root can be placed: some coefficients have no exact value (e.g. pi or sqrt(2))";
     return;
   }
   if (!sys.domain.empty() && !c.certificate.root_in_domain && !rationals_in(c.exact_root, sys.domain)) {

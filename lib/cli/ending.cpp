@@ -45,7 +45,7 @@ bool any_reason(const verify::VerifyReport& v, const char* words) {
   return false;
 }
 
-bool not_doubles_in_maps(const verify::VerifyReport& v) {
+bool inexact_in_maps(const verify::VerifyReport& v) {
   for (auto& cl : v.clusters)
     if (cl.map && !cl.map->proved && cl.map->inexact_coefficients) return true;
   return false;
@@ -61,10 +61,10 @@ std::string settle(const SolveCommand& cmd, const formulate::LoadedCase& c, cons
   if (any_reason(v, "inflation failed"))
     return "inflation failed: a smaller --sigma may separate close roots (not those closer than floating point "
            "resolves): " + smaller;
-  if (any_reason(v, "not doubles") || not_doubles_in_maps(v))
+  if (any_reason(v, "no exact value") || inexact_in_maps(v))
     return "exact arithmetic, which proves singular points and the exact roots of overdetermined systems, needs "
-           "coefficients that are doubles: write the case's constants as integers or binary fractions (scale "
-           "lengths 0.3 and 0.1 to 3 and 1, for one); see docs/verification.md";
+           "coefficients with exact rational values: write the case's constants as integers or decimals, not as "
+           "pi, functions of constants (sqrt(2), sin(1)) or interval constants; see docs/verification.md";
   if (any_reason(v, "singular"))
     return "a singular root (a multiple root, a singular point) is not certified by refining; see docs/verification.md";
   if (any_reason(v, "not square") || any_reason(v, "overdetermined"))

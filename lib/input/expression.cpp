@@ -94,7 +94,7 @@ Value Parser::raise(Value base, const Value& exponent, size_t base_at, size_t at
   if (n == 0) return r;  // x^0 = 1, also for 0^0 (Boost's pow would return empty)
   if (n >= 2) base = as_written(base, true);
   if (!base.has_variable) {
-    r.poly = Polynomial::constant(boost::numeric::pow(base.constant(), n));
+    r.poly = base.poly.constant_power(n);
   } else {
     for (int k = n; k > 0; k >>= 1) {  // square-and-multiply, guarded against blow-up
       if (k & 1) r = multiply(r, base, at);
@@ -181,14 +181,15 @@ Value Parser::number() {
     fail("missing operator between the number " + std::string(literal) + " and " + describe(text_[pos_]) +
              " (write 2*x, not 2x)",
          pos_);
-  Interval x;
+  Polynomial x;
   try {
-    x = rigorous::decimal(literal);
+    x = Polynomial::decimal(literal);
   } catch (const std::invalid_argument&) {
     fail("malformed number '" + std::string(literal) + "'", start);
   }
-  if (!is_finite(x)) fail("number " + std::string(literal) + " is outside the range of a double", start);
-  return Value{Polynomial::constant(x), false};
+  if (!is_finite(x.constant_term()))
+    fail("number " + std::string(literal) + " is outside the range of a double", start);
+  return Value{x, false};
 }
 
 Value Parser::identifier() {
@@ -257,8 +258,8 @@ Value Parser::divide(const Value& a, const Value& b, size_t divisor_at) {
   if (b.has_variable) fail("division by an expression with variables (only constant divisors)", divisor_at);
   const Interval d = b.constant();
   if (boost::numeric::zero_in(d)) fail("division by an interval containing zero", divisor_at);
-  Polynomial r;
-  for (auto& [powers, c] : a.poly.terms()) r += monomial(powers) * (c / d);
+  Polynomial r = a.poly;
+  r /= b.poly;
   return Value{r, a.has_variable};
 }
 

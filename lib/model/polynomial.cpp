@@ -1,8 +1,10 @@
 #include "model/polynomial.hpp"
 
 #include "interval/rigorous.hpp"
+#include "model/exact_coefficients.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace linkbox::model {
@@ -19,7 +21,18 @@ Powers multiply(const Powers& a, const Powers& b) {
   return r;
 }
 bool is_exact_zero(const Interval& c) { return c.lower() == 0 && c.upper() == 0; }
+bool is_point(const Interval& c) { return c.lower() == c.upper(); }
+std::optional<Rational> point_value(const Interval& c) {
+  if (!is_point(c) || !std::isfinite(c.lower())) return std::nullopt;
+  return Rational(c.lower());
+}
 }  // namespace
+
+ExactCoefficients& Polynomial::exact_for_write() {
+  if (!exact_) exact_ = std::make_shared<ExactCoefficients>();
+  else if (exact_.use_count() > 1) exact_ = std::make_shared<ExactCoefficients>(*exact_);
+  return *exact_;
+}
 
 Polynomial Polynomial::constant(const Interval& c) {
   Polynomial p;
@@ -39,6 +52,19 @@ Polynomial Polynomial::monomial(const Powers& powers, const Interval& coefficien
   return p;
 }
 
+Polynomial Polynomial::decimal(std::string_view literal) {
+  const Interval x = rigorous::decimal(literal);
+  Polynomial p;
+  if (is_point(x)) {
+    p.add_term({}, x);
+    return p;
+  }
+  const auto q = exact_decimal(literal);
+  const ExactValue v{q ? *q : Rational(0)};
+  p.add_term({}, x, q ? &v : nullptr);
+  return p;
+}
+
 bool Polynomial::is_constant() const {
   return terms_.empty() || (terms_.size() == 1 && terms_.begin()->first.empty());
 }
@@ -48,44 +74,121 @@ Interval Polynomial::constant_term() const {
   return it == terms_.end() ? Interval(0.0) : it->second;
 }
 
-void Polynomial::add_term(const Powers& p, const Interval& c) {
+// The exact value of a term is held only where its enclosure is not a point; the rational
+// arithmetic runs only where a sum or product leaves a point's enclosure.
+void Polynomial::add_term(const Powers& p, const Interval& c, const ExactValue* q) {
   if (is_exact_zero(c)) return;
   auto [it, inserted] = terms_.emplace(p, c);
-  if (!inserted) {
-    it->second += c;
+  if (inserted) {
+    if (q && !is_point(c)) hold(it, *q);
+    return;
+  }
+  const auto old_value = is_point(it->second + c) ? std::nullopt : exact_coefficient(*this, p, it->second);
+  it->second += c;
+  if (exact_ && exact_->values.count(p)) exact_for_write().values.erase(p);
+  if (is_point(it->second)) {  // a point enclosure is its own exact value
     if (is_exact_zero(it->second)) terms_.erase(it);
+    return;
+  }
+  const auto added = q ? std::optional<Rational>(q->q) : point_value(c);
+  if (!old_value || !added) return;
+  const ExactValue sum{*old_value + *added};
+  if (sum.q == 0) terms_.erase(it);  // an exact cancellation: the term is absent
+  else hold(it, sum);
+}
+
+// The term's enclosure becomes the tightest one of its exact value, which the old enclosure
+// holds, so it only narrows; a value that is not a double is held beside it.
+void Polynomial::hold(std::map<Powers, Interval>::iterator it, const ExactValue& value) {
+  it->second = enclosure(value.q);
+  if (is_point(it->second)) {
+    if (exact_ && exact_->values.count(it->first)) exact_for_write().values.erase(it->first);
+  } else {
+    exact_for_write().values[it->first] = value.q;
   }
 }
 
+namespace {
+// The exact value of a coefficient of `p` as an ExactValue for add_term: `slot` holds it.
+const ExactValue* value_of(const Polynomial& p, const Powers& powers, const Interval& c, ExactValue& slot) {
+  if (!p.exact() || is_point(c)) return nullptr;
+  auto it = p.exact()->values.find(powers);
+  if (it == p.exact()->values.end()) return nullptr;
+  slot.q = it->second;
+  return &slot;
+}
+}  // namespace
+
 Polynomial& Polynomial::operator+=(const Polynomial& o) {
-  for (auto& [p, c] : o.terms_) add_term(p, c);
+  ExactValue slot;
+  for (auto& [p, c] : o.terms_) add_term(p, c, value_of(o, p, c, slot));
   return *this;
 }
 
 Polynomial& Polynomial::operator-=(const Polynomial& o) {
-  for (auto& [p, c] : o.terms_) add_term(p, -c);
+  *this += -o;
   return *this;
 }
 
 Polynomial& Polynomial::operator*=(const Interval& c) {
   if (is_exact_zero(c)) {
     terms_.clear();
+    exact_.reset();
     return *this;
   }
-  for (auto& [p, v] : terms_) v *= c;
+  *this = *this * constant(c);
   return *this;
+}
+
+Polynomial& Polynomial::operator/=(const Polynomial& d) {
+  const Interval dc = d.constant_term();
+  const auto dq = exact_coefficient(d, {}, dc);
+  Polynomial r;
+  ExactValue slot;
+  for (auto& [p, c] : terms_) {
+    const Interval quotient = c / dc;
+    const auto cq = exact_coefficient(*this, p, c);
+    const bool known = !is_point(quotient) && cq && dq && *dq != 0;
+    if (known) slot.q = *cq / *dq;
+    r.add_term(p, quotient, known ? &slot : nullptr);
+  }
+  return *this = std::move(r);
 }
 
 Polynomial operator*(const Polynomial& a, const Polynomial& b) {
   Polynomial r;
+  ExactValue slot;
   for (auto& [pa, ca] : a.terms_)
-    for (auto& [pb, cb] : b.terms_) r.add_term(multiply(pa, pb), ca * cb);
+    for (auto& [pb, cb] : b.terms_) {
+      const Interval product = ca * cb;
+      bool known = false;
+      if (!is_point(product) && (a.exact_ || b.exact_ || (is_point(ca) && is_point(cb)))) {
+        const auto qa = exact_coefficient(a, pa, ca), qb = exact_coefficient(b, pb, cb);
+        if ((known = qa && qb)) slot.q = *qa * *qb;
+      }
+      r.add_term(multiply(pa, pb), product, known ? &slot : nullptr);
+    }
   return r;
 }
 
 Polynomial Polynomial::operator-() const {
   Polynomial r = *this;
   for (auto& [p, c] : r.terms_) c = -c;
+  if (r.exact_) {
+    auto& values = r.exact_for_write().values;
+    for (auto& [p, q] : values) q = -q;
+  }
+  return r;
+}
+
+Polynomial Polynomial::constant_power(int exponent) const {
+  const Interval c = constant_term();
+  Polynomial r;
+  const Interval power = boost::numeric::pow(c, exponent);
+  const auto q = is_point(power) ? std::nullopt : exact_coefficient(*this, {}, c);
+  ExactValue v{Rational(1)};
+  for (int k = 0; q && k < exponent; ++k) v.q *= *q;
+  r.add_term({}, power, q ? &v : nullptr);
   return r;
 }
 
@@ -125,7 +228,10 @@ Polynomial Polynomial::derivative(int index) const {
       int e = q[k].second;
       if (e == 1) q.erase(q.begin() + k);
       else q[k].second = e - 1;
-      r.add_term(q, c * Interval(static_cast<double>(e)));
+      const Interval scaled = c * Interval(static_cast<double>(e));
+      const auto value = is_point(scaled) ? std::nullopt : exact_coefficient(*this, p, c);
+      const ExactValue v{value ? *value * e : Rational(0)};
+      r.add_term(q, scaled, value ? &v : nullptr);
     }
   }
   return r;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace linkbox::model {
@@ -14,12 +15,19 @@ namespace linkbox::model {
 // Exponents by variable index, sorted by index, no zero exponents.
 using Powers = std::vector<std::pair<int, int>>;
 
+struct ExactCoefficients;  // model/exact_coefficients.hpp
+struct ExactValue;
+
 class Polynomial {
  public:
   Polynomial() = default;
   static Polynomial constant(const Interval& c);
   static Polynomial variable(int index);
   static Polynomial monomial(const Powers& powers, const Interval& coefficient);
+  // The decimal `literal` (digits, an optional fraction and exponent) as a constant: its
+  // enclosure, and its exact value where that is not a double. Throws std::invalid_argument
+  // when malformed.
+  static Polynomial decimal(std::string_view literal);
 
   const std::map<Powers, Interval>& terms() const { return terms_; }
   bool is_zero() const { return terms_.empty(); }
@@ -29,12 +37,22 @@ class Polynomial {
   Polynomial& operator+=(const Polynomial& o);
   Polynomial& operator-=(const Polynomial& o);
   Polynomial& operator*=(const Interval& c);
+  // Division by a constant `d` whose enclosure excludes 0, coefficient by coefficient.
+  Polynomial& operator/=(const Polynomial& d);
   friend Polynomial operator+(Polynomial a, const Polynomial& b) { return a += b; }
   friend Polynomial operator-(Polynomial a, const Polynomial& b) { return a -= b; }
   friend Polynomial operator*(const Polynomial& a, const Polynomial& b);
   friend Polynomial operator*(Polynomial a, const Interval& c) { return a *= c; }
   Polynomial operator-() const;
   Polynomial pow(int exponent) const;
+  // A constant's power, its enclosure by one interval power (x^2 >= 0).
+  Polynomial constant_power(int exponent) const;
+
+  // The exact value of each coefficient that is not a point: where every one is known, the
+  // polynomial's exact coefficients are known, as the exact tests of verify/ need. Decimals
+  // as written, and sums, products and quotients of known values, are known; an interval
+  // constant, pi or a function's value is not. Null when no coefficient's value is held.
+  const ExactCoefficients* exact() const { return exact_.get(); }
 
   // Natural interval extension (even powers evaluated as such, so x^2 >= 0).
   Interval eval(const Box& box) const;
@@ -48,8 +66,12 @@ class Polynomial {
   std::string to_string(const std::vector<std::string>& names) const;
 
  private:
-  void add_term(const Powers& p, const Interval& c);
+  // Adds c (exact value `q` where c is not a point and the value is known) to the term p.
+  void add_term(const Powers& p, const Interval& c, const ExactValue* q = nullptr);
+  void hold(std::map<Powers, Interval>::iterator term, const ExactValue& value);
+  ExactCoefficients& exact_for_write();
   std::map<Powers, Interval> terms_;
+  std::shared_ptr<ExactCoefficients> exact_;  // shared on copy, copied before a write
 };
 
 // Rigorous residual at the box's midpoint m (each coordinate the double nearest the centre

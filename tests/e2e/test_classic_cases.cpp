@@ -60,19 +60,46 @@ TEST_CASE("classic: an overdetermined system's exact root is certified, a near m
   CHECK_FALSE(near.v.exact);
 }
 
-// Beale with its first equation divided by 10: the same root, but 0.15 and 0.1 are intervals
-// around the decimals, so no exact root can be checked and the cluster says why; the near miss
-// above has double coefficients, so its reason does not.
-TEST_CASE("classic: decimal coefficients leave an overdetermined root a candidate, and say why", "[classic]") {
-  std::string text = beale("2.625");
+namespace {
+
+// Beale with its first equation written `first` (1.5 - x1*(1 - x2) = 0 scaled or rewritten).
+std::string beale_first(const std::string& first, const std::string& third_constant = "2.625") {
+  std::string text = beale(third_constant);
   const std::string from = "1.5 - x1*(1 - x2) = 0;";
-  text.replace(text.find(from), from.size(), "0.15 - 0.1*x1*(1 - x2) = 0;");
-  auto run = test::solve_loaded(formulate::load_case_text(text, "beale-decimal.bch"), "hc4,newton", 1e-8);
+  return text.replace(text.find(from), from.size(), first);
+}
+
+int reasons_with(const test::SolvedCase& run, const std::string& words) {
+  int n = 0;
+  for (auto& c : run.v.clusters) n += c.reason.find(words) != std::string::npos;
+  return n;
+}
+
+}  // namespace
+
+// Beale with its first equation divided by 10: 0.15 and 0.1 are intervals around the decimals
+// for the search, and their values as written are kept beside them, so the root is exact as
+// before. A third constant written one decimal digit past 2.625, inside the same double
+// interval, must not be: its exact value is not 2.625.
+TEST_CASE("classic: decimal coefficients keep their exact values, so an overdetermined root is certified", "[classic]") {
+  const std::string decimal = "0.15 - 0.1*x1*(1 - x2) = 0;";
+  auto run = test::solve_loaded(formulate::load_case_text(beale_first(decimal), "beale-decimal.bch"), "hc4,newton", 1e-8);
+  CHECK(run.v.exact);
+  REQUIRE(run.roots.size() == 1);
+  CHECK(verify::check_certificates(run.j, *run.c.formulation).failures.empty());
+  const std::string near_text = beale_first(decimal, "2.6250000000000000001");
+  auto near = test::solve_loaded(formulate::load_case_text(near_text, "near-decimal.bch"), "hc4,newton", 1e-8);
+  CHECK(near.roots.empty());
+  CHECK_FALSE(near.v.exact);
+  CHECK(reasons_with(near, "no exact value") == 0);
+}
+
+// sqrt(0.0225) is 0.15, but its enclosure has no exact rational value beside it: the root stays a
+// candidate, and the cluster says why.
+TEST_CASE("classic: a coefficient with no exact value leaves an overdetermined root a candidate, and says why", "[classic]") {
+  const std::string text = beale_first("sqrt(0.0225) - 0.1*x1*(1 - x2) = 0;");
+  auto run = test::solve_loaded(formulate::load_case_text(text, "beale-sqrt.bch"), "hc4,newton", 1e-8);
   CHECK(run.roots.empty());
   CHECK_FALSE(run.v.exact);
-  int told = 0;
-  for (auto& c : run.v.clusters) told += c.reason.find("no exact root can be placed: some coefficients are not doubles") != std::string::npos;
-  CHECK(told == 1);
-  auto near = test::solve_loaded(formulate::load_case_text(beale("(2.625 + 2^-51)"), "near.bch"), "hc4,newton", 1e-8);
-  for (auto& c : near.v.clusters) CHECK(c.reason.find("not doubles") == std::string::npos);
+  CHECK(reasons_with(run, "no exact root can be placed: some coefficients have no exact value") == 1);
 }

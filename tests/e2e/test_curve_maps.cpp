@@ -158,28 +158,49 @@ TEST_CASE("an avoided crossing has no singular point and no proved map", "[verif
     if (c.map) CHECK(c.map->singular_points.empty());
 }
 
-TEST_CASE("decimal coefficients: no singular point is tried, and the run says why and what to write", "[verify][map][cli]") {
-  // The parallelogram four-bar with lengths 0.1 and 0.3: the same change points, but 0.1, 0.09
-  // and 0.3 are intervals around the decimals, so no exact zero can be checked.
+namespace {
+
+// The parallelogram four-bar with its coupler equation written `coupler`.
+std::string parallelogram_with(const std::string& coupler) {
   std::string text = read("cases/curves/fourbar-parallelogram.toml");
   const std::string from = "\"(3 + c3 - c1)^2 + (s3 - s1)^2 - 9\"";
   const auto at = text.find(from);
   REQUIRE(at != std::string::npos);
-  text.replace(at, from.size(), "\"(0.3 + 0.1*c3 - 0.1*c1)^2 + (0.1*s3 - 0.1*s1)^2 - 0.09\"");
+  return text.replace(at, from.size(), coupler);
+}
+
+}  // namespace
+
+TEST_CASE("decimal coefficients: the change points are proved from the decimals as written", "[verify][map]") {
+  // Lengths 0.1 and 0.3: intervals around the decimals for the search, their exact values
+  // beside them for the singular points' exact test.
+  const std::string text = parallelogram_with("\"(0.3 + 0.1*c3 - 0.1*c1)^2 + (0.1*s3 - 0.1*s1)^2 - 0.09\"");
   const Mapped m = solve_text(text, "decimal-parallelogram.toml", "auto", 0.05);
+  INFO(m.v.headline);
+  CHECK(m.v.maps_proved);
+  CHECK(m.v.singular_points == 2);
+  REQUIRE(m.v.clusters.size() == 1);
+  REQUIRE(m.v.clusters[0].map);
+  CHECK_FALSE(m.v.clusters[0].map->inexact_coefficients);
+}
+
+TEST_CASE("a coefficient with no exact value: no singular point is tried, and the run says why and what to write", "[verify][map][cli]") {
+  // sqrt(0.09) is 0.3, but its enclosure has no exact rational value: no exact zero can be checked.
+  const std::string text = parallelogram_with("\"(sqrt(0.09) + 0.1*c3 - 0.1*c1)^2 + (0.1*s3 - 0.1*s1)^2 - 0.09\"");
+  const Mapped m = solve_text(text, "sqrt-parallelogram.toml", "auto", 0.05);
   REQUIRE(m.v.clusters.size() == 1);
   const auto& map = m.v.clusters[0].map;
   REQUIRE(map);
   CHECK_FALSE(map->proved);
   CHECK(map->singular_points.empty());
   CHECK(map->inexact_coefficients);
-  CHECK(map->statement.find("not doubles") != std::string::npos);
-  const std::string file = test::scratch("decimal-parallelogram.toml");
+  CHECK(map->statement.find("have no exact value") != std::string::npos);
+  const std::string file = test::scratch("sqrt-parallelogram.toml");
   std::ofstream(file) << text;
   const test::Ran r = test::run_cli("solve " + file + " --threads 1 --quiet");
   CHECK(r.code == 4);
   CHECK(r.out.find("linkbox: next: exact arithmetic") != std::string::npos);
-  CHECK(r.out.find("integers or binary fractions") != std::string::npos);
+  CHECK(r.out.find("integers or decimals") != std::string::npos);
 }
 
 TEST_CASE("a nearly mobile 6R loop is never a proved curve", "[verify][map]") {
