@@ -61,13 +61,13 @@ def run(args):
     started = utc_now()
     files = finished_files(args.corpus_csv)
     bench = pathlib.Path(args.bench)
-    kept = load(args.csv) if args.only else {}
+    kept = load(args.csv) if args.only or args.files else {}
     with open(args.csv, "w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, fieldnames=FIELDS)
         w.writeheader()
         for i, name in enumerate(files):
             for s in STRATEGIES:
-                if args.only and s not in args.only:
+                if (args.only and s not in args.only) or (args.files and name not in args.files):
                     if s in kept.get(name, {}):
                         w.writerow(kept[name][s])
                     continue
@@ -156,6 +156,7 @@ def main():
     r.add_argument("--bench", default=str(SHARED / "corpus" / "ibex-solver"))
     r.add_argument("--corpus-csv", default=str(HERE / "corpus.csv"), help="which files finished")
     r.add_argument("--only", nargs="*", help="run these strategies again, keep the others' rows in --csv")
+    r.add_argument("--files", nargs="*", help="run these files again (as in corpus.csv), keep the others' rows in --csv")
     d = sub.add_parser("render", help="write auto_vs_fixed.md from auto_vs_fixed.csv")
     for p in (r, d):
         p.add_argument("--csv", type=pathlib.Path, default=HERE / "auto_vs_fixed.csv")

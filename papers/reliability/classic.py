@@ -28,19 +28,16 @@ NOTES = {
                       "inverts it equilibrated (newton/regular_inverse.hpp) and certifies all four.",
     "beale.bch": "three equations in two unknowns; linkbox certifies (3, 1/2) as an exact root of all three "
                  "(the square subsystem's unique root, where the third is exactly 0).",
-    "brown-badly-scaled.bch": "three equations in two unknowns; 2e-6 is not a double, so the constant is an "
-                              "interval and no exact root can be placed: linkbox leaves the one cluster "
-                              "'overdetermined: 2 of 3 equations have a unique root in the box', and says why. "
-                              "Written 500000*x2 - 1 = 0 (integers, as its last line advises), the root is "
-                              "certified as an exact root of all three.",
+    "brown-badly-scaled.bch": "three equations in two unknowns; 2e-6 is not a double: the search uses an interval "
+                              "around it, and its exact value is kept beside it (model/exact_coefficients.hpp), so "
+                              "linkbox certifies (1e6, 2e-6) as an exact root of all three (argument \"exact root\").",
     "powell-singular.bch": "the only root, 0, has a singular Jacobian (rank 2): neither tool certifies it.",
     "extended-powell-8.bch": "two copies of Powell singular: the root 0 is singular, neither tool certifies it.",
     "variably-dimensioned-4.bch": "six equations in four unknowns; linkbox certifies (1, 1, 1, 1) as an exact root "
                                   "of all six (argument \"exact root\").",
     "wood-integer.bch": "six equations in four unknowns with the root (1, 1, 1, 1); the weight 1/3 is not a double, "
-                        "so its equation's coefficients are intervals and no exact root can be placed: linkbox "
-                        "leaves the cluster 'overdetermined: 4 of 6 equations have a unique root in the box', "
-                        "and says why.",
+                        "but the quotient of integers is kept exactly beside its interval, so linkbox certifies "
+                        "(1, 1, 1, 1) as an exact root of all six.",
     "box-3d.bch": "besides (1, 10, 1) and (10, 1, -1), the line x1 = x2, x3 = 0 is in the solution set: "
                   "neither tool finishes covering it at its precision.",
 }
