@@ -1,6 +1,7 @@
 #include "model/lifting.hpp"
 
 #include "interval/rigorous.hpp"
+#include "model/exact_coefficients.hpp"
 
 #include <algorithm>
 
@@ -103,10 +104,13 @@ Interval enclose_over(const Application& a, const Box& values) {
   return enclose(a, a.argument.eval(values), two ? a.second.eval(values) : Interval(1.0));
 }
 
+// Equal enclosures of different exact values (decimals alike to 17 digits) are not the same.
 bool same(const Polynomial& a, const Polynomial& b) {
   if (a.terms().size() != b.terms().size()) return false;
-  for (auto ia = a.terms().begin(), ib = b.terms().begin(); ia != a.terms().end(); ++ia, ++ib)
+  for (auto ia = a.terms().begin(), ib = b.terms().begin(); ia != a.terms().end(); ++ia, ++ib) {
     if (ia->first != ib->first || !same_bounds(ia->second, ib->second)) return false;
+    if (exact_coefficient(a, ia->first, ia->second) != exact_coefficient(b, ib->first, ib->second)) return false;
+  }
   return true;
 }
 

@@ -59,9 +59,9 @@ Polynomial Polynomial::decimal(std::string_view literal) {
     p.add_term({}, x);
     return p;
   }
-  const auto q = exact_decimal(literal);
-  const ExactValue v{q ? *q : Rational(0)};
-  p.add_term({}, x, q ? &v : nullptr);
+  std::optional<ExactValue> v;
+  if (auto q = exact_decimal(literal)) v.emplace(ExactValue{*q});
+  p.add_term({}, x, v ? &*v : nullptr);
   return p;
 }
 
@@ -83,9 +83,12 @@ void Polynomial::add_term(const Powers& p, const Interval& c, const ExactValue* 
     if (q && !is_point(c)) hold(it, *q);
     return;
   }
-  const auto old_value = is_point(it->second + c) ? std::nullopt : exact_coefficient(*this, p, it->second);
+  const Interval before = it->second;
   it->second += c;
-  if (exact_ && exact_->values.count(p)) exact_for_write().values.erase(p);
+  const bool held = exact_ && exact_->values.count(p);
+  const bool known = (is_point(before) || held) && (is_point(c) || q);
+  const auto old_value = known && !is_point(it->second) ? exact_coefficient(*this, p, before) : std::nullopt;
+  if (held) exact_for_write().values.erase(p);
   if (is_point(it->second)) {  // a point enclosure is its own exact value
     if (is_exact_zero(it->second)) terms_.erase(it);
     return;
@@ -98,9 +101,15 @@ void Polynomial::add_term(const Powers& p, const Interval& c, const ExactValue* 
 }
 
 // The term's enclosure becomes the tightest one of its exact value, which the old enclosure
-// holds, so it only narrows; a value that is not a double is held beside it.
+// holds, so it only narrows; a value that is not a double is held beside it. A value outside
+// the old enclosure cannot be the term's: it is not held.
 void Polynomial::hold(std::map<Powers, Interval>::iterator it, const ExactValue& value) {
-  it->second = enclosure(value.q);
+  const Interval tight = enclosure(value.q);
+  if (tight.lower() < it->second.lower() || tight.upper() > it->second.upper()) {
+    if (exact_ && exact_->values.count(it->first)) exact_for_write().values.erase(it->first);
+    return;
+  }
+  it->second = tight;
   if (is_point(it->second)) {
     if (exact_ && exact_->values.count(it->first)) exact_for_write().values.erase(it->first);
   } else {
@@ -109,24 +118,30 @@ void Polynomial::hold(std::map<Powers, Interval>::iterator it, const ExactValue&
 }
 
 namespace {
-// The exact value of a coefficient of `p` as an ExactValue for add_term: `slot` holds it.
-const ExactValue* value_of(const Polynomial& p, const Powers& powers, const Interval& c, ExactValue& slot) {
+// The value `p` holds for a coefficient, as an ExactValue for add_term: `slot` holds it. A
+// Rational is built only where a value is held (GMP allocates).
+const ExactValue* value_of(const Polynomial& p, const Powers& powers, const Interval& c,
+                           std::optional<ExactValue>& slot) {
   if (!p.exact() || is_point(c)) return nullptr;
   auto it = p.exact()->values.find(powers);
   if (it == p.exact()->values.end()) return nullptr;
-  slot.q = it->second;
-  return &slot;
+  return &slot.emplace(ExactValue{it->second});
 }
 }  // namespace
 
 Polynomial& Polynomial::operator+=(const Polynomial& o) {
-  ExactValue slot;
+  std::optional<ExactValue> slot;
   for (auto& [p, c] : o.terms_) add_term(p, c, value_of(o, p, c, slot));
   return *this;
 }
 
 Polynomial& Polynomial::operator-=(const Polynomial& o) {
-  *this += -o;
+  std::optional<ExactValue> slot;
+  for (auto& [p, c] : o.terms_) {
+    const ExactValue* q = value_of(o, p, c, slot);
+    if (q) slot->q = -slot->q;
+    add_term(p, -c, q);
+  }
   return *this;
 }
 
@@ -134,6 +149,10 @@ Polynomial& Polynomial::operator*=(const Interval& c) {
   if (is_exact_zero(c)) {
     terms_.clear();
     exact_.reset();
+    return *this;
+  }
+  if (!exact_ && !is_point(c)) {  // no exact value survives an interval factor
+    for (auto& [p, v] : terms_) v *= c;
     return *this;
   }
   *this = *this * constant(c);
@@ -144,29 +163,27 @@ Polynomial& Polynomial::operator/=(const Polynomial& d) {
   const Interval dc = d.constant_term();
   const auto dq = exact_coefficient(d, {}, dc);
   Polynomial r;
-  ExactValue slot;
   for (auto& [p, c] : terms_) {
     const Interval quotient = c / dc;
-    const auto cq = exact_coefficient(*this, p, c);
-    const bool known = !is_point(quotient) && cq && dq && *dq != 0;
-    if (known) slot.q = *cq / *dq;
-    r.add_term(p, quotient, known ? &slot : nullptr);
+    std::optional<ExactValue> q;
+    const auto cq = is_point(quotient) ? std::nullopt : exact_coefficient(*this, p, c);
+    if (cq && dq && *dq != 0) q.emplace(ExactValue{*cq / *dq});
+    r.add_term(p, quotient, q ? &*q : nullptr);
   }
   return *this = std::move(r);
 }
 
 Polynomial operator*(const Polynomial& a, const Polynomial& b) {
   Polynomial r;
-  ExactValue slot;
   for (auto& [pa, ca] : a.terms_)
     for (auto& [pb, cb] : b.terms_) {
       const Interval product = ca * cb;
-      bool known = false;
+      std::optional<ExactValue> q;
       if (!is_point(product) && (a.exact_ || b.exact_ || (is_point(ca) && is_point(cb)))) {
         const auto qa = exact_coefficient(a, pa, ca), qb = exact_coefficient(b, pb, cb);
-        if ((known = qa && qb)) slot.q = *qa * *qb;
+        if (qa && qb) q.emplace(ExactValue{*qa * *qb});
       }
-      r.add_term(multiply(pa, pb), product, known ? &slot : nullptr);
+      r.add_term(multiply(pa, pb), product, q ? &*q : nullptr);
     }
   return r;
 }
@@ -186,9 +203,10 @@ Polynomial Polynomial::constant_power(int exponent) const {
   Polynomial r;
   const Interval power = boost::numeric::pow(c, exponent);
   const auto q = is_point(power) ? std::nullopt : exact_coefficient(*this, {}, c);
-  ExactValue v{Rational(1)};
-  for (int k = 0; q && k < exponent; ++k) v.q *= *q;
-  r.add_term({}, power, q ? &v : nullptr);
+  std::optional<ExactValue> v;
+  if (q) v.emplace(ExactValue{Rational(1)});
+  for (int k = 0; q && k < exponent; ++k) v->q *= *q;
+  r.add_term({}, power, v ? &*v : nullptr);
   return r;
 }
 
@@ -230,8 +248,9 @@ Polynomial Polynomial::derivative(int index) const {
       else q[k].second = e - 1;
       const Interval scaled = c * Interval(static_cast<double>(e));
       const auto value = is_point(scaled) ? std::nullopt : exact_coefficient(*this, p, c);
-      const ExactValue v{value ? *value * e : Rational(0)};
-      r.add_term(q, scaled, value ? &v : nullptr);
+      std::optional<ExactValue> v;
+      if (value) v.emplace(ExactValue{*value * e});
+      r.add_term(q, scaled, v ? &*v : nullptr);
     }
   }
   return r;

@@ -123,3 +123,9 @@ TEST_CASE("random decimal arithmetic: each enclosure holds the exact value kept 
     }
   }
 }
+
+TEST_CASE("functions of decimals alike to 17 digits are two applications, not one", "[model][exact]") {
+  std::vector<model::Application> applications;
+  input::parse_with_functions("sin(0.1*x) + sin(0.1000000000000000000001*x) + sin(0.1*x)", kNames, applications);
+  CHECK(applications.size() == 2);
+}
