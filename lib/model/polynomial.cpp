@@ -96,7 +96,7 @@ void Polynomial::add_term(const Powers& p, const Interval& c, const ExactValue* 
   const auto added = q ? std::optional<Rational>(q->q) : point_value(c);
   if (!old_value || !added) return;
   const ExactValue sum{*old_value + *added};
-  if (sum.q == 0) terms_.erase(it);  // an exact cancellation: the term is absent
+  if (sum.q == 0 && boost::numeric::zero_in(it->second)) terms_.erase(it);  // an exact cancellation
   else hold(it, sum);
 }
 
